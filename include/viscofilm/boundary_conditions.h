@@ -1,0 +1,61 @@
+// Velocity boundary conditions on the four sides of the channel (MODEL.md §4).
+#ifndef viscofilm_boundary_conditions_h
+#define viscofilm_boundary_conditions_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/lac/affine_constraints.h>
+
+#include <viscofilm/input.h>
+
+#include <array>
+#include <string>
+
+namespace viscofilm
+{
+  using namespace dealii;
+
+  class BoundaryConditions
+  {
+  public:
+    enum class Type
+    {
+      no_slip,  // u = v = 0
+      velocity, // u, v from the expression
+      outflow   // tangential velocity from the expression, normal natural
+    };
+
+    struct Boundary
+    {
+      std::string      name;
+      Type             type = Type::no_slip;
+      ParsedExpression velocity{2};
+    };
+
+    BoundaryConditions();
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /// Add the velocity constraints at time @p time to @p constraints for a
+    /// Stokes element whose components 0, 1 are the velocity.
+    void
+    constrain_velocity(const DoFHandler<2> &        dof_handler,
+                       const double                 time,
+                       AffineConstraints<double> &constraints) const;
+
+    /// With an outflow boundary the outlet fixes the pressure level;
+    /// otherwise the pressure is determined up to a constant.
+    bool
+    has_outflow() const;
+
+    /// Indexed by BoundaryId.
+    std::array<Boundary, 4> boundaries;
+  };
+} // namespace viscofilm
+
+#endif

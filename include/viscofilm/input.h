@@ -1,0 +1,85 @@
+// Helpers to read user input: points, point lists and muparser expressions,
+// each checked at parse time with a message naming the parameter.
+#ifndef viscofilm_input_h
+#define viscofilm_input_h
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace viscofilm
+{
+  using namespace dealii;
+
+  /**
+   * A mistake in the user's input. The message names the parameter, what was
+   * given and what is accepted; main() prints it without a backtrace.
+   */
+  DeclException1(ExcInput, std::string, << arg1);
+
+  /// The message of an exception for a user: a deal.II exception's own text
+  /// without the file, line and backtrace that what() adds.
+  std::string
+  error_message(const std::exception &e);
+
+  /// Throw ExcInput with @p message unless @p condition holds.
+  void
+  check_input(const bool condition, const std::string &message);
+
+  /// "x, y" -> Point<2>. @p parameter names the entry in error messages.
+  Point<2>
+  parse_point(const std::string &text, const std::string &parameter);
+
+  /// "x1, y1; x2, y2; ..." -> points (empty text: no points).
+  std::vector<Point<2>>
+  parse_point_list(const std::string &text, const std::string &parameter);
+
+  /**
+   * A vector-valued muparser expression of (x, y, t) read from a parameter
+   * file: components separated by ';', constants "name=value, ...". The
+   * expression is evaluated once when parsed, so a typo is reported with the
+   * parameter's name before the run starts, not in the middle of it.
+   */
+  class ParsedExpression
+  {
+  public:
+    explicit ParsedExpression(const unsigned int n_components);
+
+    /// Declare the entry @p name (constants: declare_function_constants()).
+    static void
+    declare(ParameterHandler & prm,
+            const std::string &name,
+            const std::string &default_expression,
+            const std::string &documentation);
+
+    /// Read the expression @p expression with @p constants ("a=1, b=2").
+    /// @p parameter is the full parameter path used in messages.
+    void
+    parse(const std::string &expression,
+          const std::string &constants,
+          const std::string &parameter);
+
+    /// The function; set_time() on it before evaluating time-dependent input.
+    FunctionParser<2> &
+    function() const;
+
+    const std::string &
+    text() const;
+
+  private:
+    const unsigned int                 n_components;
+    std::string                        expression;
+    std::unique_ptr<FunctionParser<2>> parser;
+  };
+
+  /// Declare the "Function constants" entry shared by all expressions.
+  void
+  declare_function_constants(ParameterHandler &prm);
+} // namespace viscofilm
+
+#endif

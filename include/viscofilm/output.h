@@ -1,0 +1,112 @@
+// Everything a run writes: HDF5/XDMF snapshots, statistics.csv, probes.csv
+// and the parameters it used.
+#ifndef viscofilm_output_h
+#define viscofilm_output_h
+
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/base/mpi_remote_point_evaluation.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+
+#include <deal.II/distributed/tria.h>
+
+#include <fstream>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace viscofilm
+{
+  using namespace dealii;
+
+  class StokesSolver;
+  class VolumeFraction;
+
+  /**
+   * A CSV file written by rank 0, one row at a time with named columns in a
+   * fixed order. Values carry 17 significant digits, and every row is
+   * flushed so that a run stopped by an error leaves a valid file.
+   */
+  class CsvFile
+  {
+  public:
+    CsvFile(const std::string &filename, const MPI_Comm mpi_communicator);
+
+    /// Set a column of the current row; the first row fixes the columns.
+    void
+    set(const std::string &column, const double value);
+
+    /// Write the current row and start a new one.
+    void
+    write_row();
+
+  private:
+    const bool                                    is_writer;
+    std::ofstream                                 file;
+    std::vector<std::pair<std::string, double>>   row;
+    std::vector<std::string>                      header;
+  };
+
+
+  class Output
+  {
+  public:
+    struct Parameters
+    {
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+
+      std::string           directory = "output";
+      unsigned int          interval  = 10;
+      std::vector<Point<2>> probe_points;
+    };
+
+    Output(const Parameters &                             parameters,
+           const parallel::distributed::Triangulation<2> &triangulation);
+
+    /// Create the output directory and write the parameters used into it.
+    void
+    prepare(const ParameterHandler &prm);
+
+    /// The mesh changed: probe locations must be searched again.
+    void
+    mesh_changed();
+
+    /// Snapshot due at this step? (The first and last steps always are.)
+    bool
+    snapshot_due(const unsigned int step, const bool last_step) const;
+
+    /// Write solution-NNNNN.h5 and rewrite solution.xdmf.
+    void
+    write_snapshot(const unsigned int    step,
+                   const double          time,
+                   const StokesSolver &  stokes,
+                   const VolumeFraction &volume_fraction);
+
+    /// Append one row per probe point to probes.csv.
+    void
+    write_probes(const unsigned int    step,
+                 const double          time,
+                 const StokesSolver &  stokes,
+                 const VolumeFraction &volume_fraction);
+
+    CsvFile &
+    statistics();
+
+  private:
+    const Parameters &                             parameters;
+    const parallel::distributed::Triangulation<2> &triangulation;
+    const MPI_Comm                                 mpi_communicator;
+
+    std::vector<XDMFEntry>                  xdmf_entries;
+    std::unique_ptr<CsvFile>                statistics_file;
+    std::unique_ptr<CsvFile>                probes_file;
+    Utilities::MPI::RemotePointEvaluation<2> probe_cache;
+    bool                                    probe_cache_is_current = false;
+  };
+} // namespace viscofilm
+
+#endif

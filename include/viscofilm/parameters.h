@@ -1,0 +1,41 @@
+// All run parameters: each component declares and parses its own subsection;
+// this collects them and checks what spans several subsections.
+#ifndef viscofilm_parameters_h
+#define viscofilm_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <viscofilm/boundary_conditions.h>
+#include <viscofilm/geometry.h>
+#include <viscofilm/initial_conditions.h>
+#include <viscofilm/model.h>
+#include <viscofilm/output.h>
+#include <viscofilm/stokes.h>
+#include <viscofilm/time_stepping.h>
+#include <viscofilm/verification.h>
+
+namespace viscofilm
+{
+  using namespace dealii;
+
+  struct Parameters
+  {
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /// Parse every subsection; throws ExcInput on inconsistent input.
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    Geometry                 geometry;
+    TimeStepping             time_stepping;
+    Model                    model;
+    BoundaryConditions       boundary_conditions;
+    InitialConditions        initial_conditions;
+    StokesSolver::Parameters stokes_solver;
+    Output::Parameters       output;
+    Verification             verification;
+  };
+} // namespace viscofilm
+
+#endif

@@ -1,0 +1,165 @@
+// Variable-viscosity Stokes with Taylor–Hood elements and a block-
+// preconditioned Krylov solver (MODEL.md §3 step 2a).
+#ifndef viscofilm_stokes_h
+#define viscofilm_stokes_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_system.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_block_sparse_matrix.h>
+#include <deal.II/lac/trilinos_parallel_block_vector.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <viscofilm/boundary_conditions.h>
+#include <viscofilm/model.h>
+
+#include <functional>
+#include <memory>
+
+namespace viscofilm
+{
+  using namespace dealii;
+
+  class StokesSolver
+  {
+  public:
+    enum class Method
+    {
+      block_preconditioned, // FGMRES + block triangular preconditioner
+      direct                // Amesos KLU on the whole system (small meshes)
+    };
+
+    /// How η(φ) enters each cell.
+    enum class Averaging
+    {
+      none,       // η at every quadrature point
+      arithmetic, // cell mean of η
+      harmonic,   // cell harmonic mean of η
+      geometric   // cell geometric mean of η
+    };
+
+    struct Parameters
+    {
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+
+      Method       method         = Method::block_preconditioned;
+      double       tolerance      = 1e-8;
+      unsigned int max_iterations = 1000;
+      Averaging    averaging      = Averaging::harmonic;
+      bool         verbose        = true;
+    };
+
+    /// φτ at the quadrature points of a cell: the elastic stress term
+    /// −(φτ, ∇v) on the right-hand side. An empty hook means τ = 0.
+    using ElasticStress = std::function<void(
+      const DoFHandler<2>::active_cell_iterator &cell,
+      std::vector<SymmetricTensor<2, 2>> &       phi_tau)>;
+
+    /// What the momentum equation needs besides the unknowns.
+    struct Coefficients
+    {
+      double                          time;
+      double                          time_step;
+      const DoFHandler<2> *           volume_fraction_dof_handler;
+      const TrilinosWrappers::MPI::Vector *volume_fraction;
+      Function<2> *                   body_force; // set_time() is called
+      ElasticStress                   elastic_stress;
+    };
+
+    StokesSolver(const parallel::distributed::Triangulation<2> &triangulation,
+                 const Parameters &                             parameters,
+                 const Model &                                  model,
+                 const BoundaryConditions &                     boundary_conditions);
+
+    /// Distribute dofs, build sparsity patterns, zero the solution.
+    void
+    setup_dofs();
+
+    /// The viscosity or time step changed: the matrix and the preconditioner
+    /// are rebuilt at the next assemble()/solve().
+    void
+    invalidate_matrix();
+
+    /// Assemble the right-hand side (and the matrix if invalidated).
+    void
+    assemble(const Coefficients &coefficients);
+
+    /// Solve; returns the number of outer Krylov iterations (0 if direct).
+    /// Throws with the residual if the solver does not converge.
+    unsigned int
+    solve();
+
+    /// u^n := current solution, before the next time step.
+    void
+    advance_time();
+
+    const DoFHandler<2> &
+    dof_handler() const;
+
+    /// The current solution (u, v, p) with ghost values.
+    const TrilinosWrappers::MPI::BlockVector &
+    solution() const;
+
+    types::global_dof_index
+    n_dofs() const;
+
+    /// max |u| over the Q2 nodes.
+    double
+    max_velocity() const;
+
+  private:
+    void
+    make_constraints(const double time);
+    void
+    build_preconditioner();
+    unsigned int
+    solve_block_preconditioned(TrilinosWrappers::MPI::BlockVector &distributed);
+    void
+    solve_direct(TrilinosWrappers::MPI::BlockVector &distributed);
+    /// Shift the pressure to mean zero unless an outflow boundary fixes it.
+    void
+    normalize_pressure(TrilinosWrappers::MPI::BlockVector &distributed);
+
+    const parallel::distributed::Triangulation<2> &triangulation;
+    const Parameters &                             parameters;
+    const Model &                                  model;
+    const BoundaryConditions &                     boundary_conditions;
+    const MPI_Comm                                 mpi_communicator;
+
+    const FESystem<2> fe;
+    DoFHandler<2>     dofs;
+
+    std::vector<IndexSet>     owned_partitioning;
+    std::vector<IndexSet>     relevant_partitioning;
+    IndexSet                  locally_relevant_dofs;
+    AffineConstraints<double> constraints;
+
+    TrilinosWrappers::BlockSparseMatrix system_matrix;
+    TrilinosWrappers::BlockSparseMatrix preconditioner_matrix; // (1/η) M_p
+    TrilinosWrappers::SparseMatrix      monolithic_matrix;     // direct only
+
+    TrilinosWrappers::MPI::BlockVector system_rhs;
+    TrilinosWrappers::MPI::BlockVector current_solution; // ghosted
+    TrilinosWrappers::MPI::BlockVector old_solution;     // ghosted, u^n
+
+    bool matrix_is_current = false;
+    bool preconditioner_is_current = false;
+
+    std::unique_ptr<TrilinosWrappers::PreconditionAMG>    velocity_amg;
+    std::unique_ptr<TrilinosWrappers::PreconditionJacobi> mass_jacobi;
+  };
+} // namespace viscofilm
+
+#endif

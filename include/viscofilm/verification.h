@@ -1,0 +1,45 @@
+// Manufactured solutions: a body force and an exact solution to measure
+// errors against (used by the convergence tests).
+#ifndef viscofilm_verification_h
+#define viscofilm_verification_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/function_parser.h>
+
+#include <viscofilm/input.h>
+
+#include <optional>
+#include <utility>
+
+namespace viscofilm
+{
+  using namespace dealii;
+
+  class StokesSolver;
+
+  class Verification
+  {
+  public:
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /// f in the momentum equation (zero unless set).
+    ParsedExpression body_force{2};
+
+    /// L2 errors (velocity, pressure) of the Stokes solution at @p time
+    /// against the exact solution; with @p pressure_up_to_constant the best
+    /// constant shift of the pressure is removed first.
+    std::pair<double, double>
+    l2_errors(const StokesSolver &stokes,
+              const double              time,
+              const bool                pressure_up_to_constant) const;
+
+    /// (u, v, p) when an exact solution is given: statistics.csv then gets
+    /// velocity_l2_error and pressure_l2_error.
+    std::optional<ParsedExpression> exact_solution;
+  };
+} // namespace viscofilm
+
+#endif

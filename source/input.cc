@@ -1,0 +1,169 @@
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <viscofilm/input.h>
+
+#include <map>
+#include <sstream>
+
+namespace viscofilm
+{
+  std::string
+  error_message(const std::exception &e)
+  {
+    if (const auto *deal_ii = dynamic_cast<const ExceptionBase *>(&e))
+      {
+        std::ostringstream info;
+        deal_ii->print_info(info);
+        return Utilities::trim(info.str());
+      }
+    return e.what();
+  }
+
+
+  void
+  check_input(const bool condition, const std::string &message)
+  {
+    if (!condition)
+      throw ExcInput(message);
+  }
+
+
+  Point<2>
+  parse_point(const std::string &text, const std::string &parameter)
+  {
+    const std::vector<std::string> parts =
+      Utilities::split_string_list(text, ',');
+    check_input(parts.size() == 2,
+                parameter + " must be a point \"x, y\", got \"" + text + "\"");
+    Point<2> p;
+    for (unsigned int d = 0; d < 2; ++d)
+      {
+        try
+          {
+            p[d] = Utilities::string_to_double(parts[d]);
+          }
+        catch (...)
+          {
+            check_input(false,
+                        parameter + " must be a point \"x, y\" of two numbers, got \"" +
+                          text + "\"");
+          }
+      }
+    return p;
+  }
+
+
+  std::vector<Point<2>>
+  parse_point_list(const std::string &text, const std::string &parameter)
+  {
+    std::vector<Point<2>> points;
+    for (const std::string &item : Utilities::split_string_list(text, ';'))
+      if (!item.empty())
+        points.push_back(parse_point(item, parameter));
+    return points;
+  }
+
+
+  void
+  declare_function_constants(ParameterHandler &prm)
+  {
+    prm.declare_entry("Function constants",
+                      "",
+                      Patterns::Anything(),
+                      "Constants usable in this subsection's expressions, as "
+                      "\"name=value, name=value\". pi is always defined.");
+  }
+
+
+  ParsedExpression::ParsedExpression(const unsigned int n_components)
+    : n_components(n_components)
+  {}
+
+
+  void
+  ParsedExpression::declare(ParameterHandler & prm,
+                            const std::string &name,
+                            const std::string &default_expression,
+                            const std::string &documentation)
+  {
+    prm.declare_entry(name,
+                      default_expression,
+                      Patterns::Anything(),
+                      documentation +
+                        " A muparser expression in x, y and t (components "
+                        "separated by ';'; functions such as sin, exp, abs, "
+                        "if(condition, a, b) are available).");
+  }
+
+
+  void
+  ParsedExpression::parse(const std::string &text,
+                          const std::string &constants_text,
+                          const std::string &parameter)
+  {
+    expression = text;
+    const std::vector<std::string> components =
+      Utilities::split_string_list(text, ';');
+    check_input(components.size() == n_components,
+                parameter + " must have " + std::to_string(n_components) +
+                  " component(s) separated by ';', got " +
+                  std::to_string(components.size()) + ": \"" + text + "\"");
+
+    std::map<std::string, double> constants{{"pi", numbers::PI}};
+    const std::string constants_parameter =
+      parameter.substr(0, parameter.rfind('/') + 1) + "Function constants";
+    for (const std::string &item : Utilities::split_string_list(constants_text, ','))
+      {
+        const std::vector<std::string> name_value =
+          Utilities::split_string_list(item, '=');
+        bool valid = (name_value.size() == 2 && !name_value[0].empty());
+        if (valid)
+          try
+            {
+              constants[name_value[0]] =
+                Utilities::string_to_double(name_value[1]);
+            }
+          catch (...)
+            {
+              valid = false;
+            }
+        check_input(valid,
+                    constants_parameter +
+                      " must be a list \"name=value, name=value\" of numbers, "
+                      "got \"" + constants_text + "\"");
+      }
+
+    try
+      {
+        parser = std::make_unique<FunctionParser<2>>(n_components);
+        parser->initialize("x,y,t", components, constants, /*time dependent*/ true);
+        // muparser compiles lazily: evaluate once so errors surface here.
+        Vector<double> values(n_components);
+        parser->vector_value(Point<2>(0.5, 0.5), values);
+      }
+    catch (const std::exception &e)
+      {
+        check_input(false,
+                    parameter + " = \"" + text +
+                      "\" is not a valid expression in x, y, t and the "
+                      "constants {" + constants_text + "}: " + error_message(e));
+      }
+  }
+
+
+  FunctionParser<2> &
+  ParsedExpression::function() const
+  {
+    Assert(parser, ExcInternalError());
+    return *parser;
+  }
+
+
+  const std::string &
+  ParsedExpression::text() const
+  {
+    return expression;
+  }
+} // namespace viscofilm

@@ -1,0 +1,114 @@
+// viscofilm: command line entry point. The physics lives in the library.
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <viscofilm/input.h>
+#include <viscofilm/parameters.h>
+#include <viscofilm/problem.h>
+
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+  const char *usage =
+    "Usage: viscofilm FILE.prm              run the simulation described in FILE.prm\n"
+    "       viscofilm --validate FILE.prm   check FILE.prm and exit\n"
+    "       viscofilm --print-parameters    print every parameter with its\n"
+    "                                       documentation and default\n"
+    "       viscofilm --help                print this message\n"
+    "Run in parallel with: mpirun -np N viscofilm FILE.prm\n";
+
+  /// Read @p filename into @p prm and @p parameters, or throw with a message
+  /// that names the file, the line and the parameter.
+  void
+  read_parameters(const std::string &     filename,
+                  dealii::ParameterHandler &prm,
+                  viscofilm::Parameters &  parameters)
+  {
+    viscofilm::check_input(std::filesystem::is_regular_file(filename),
+                           "parameter file \"" + filename + "\" does not exist");
+    viscofilm::check_input(filename.size() > 4 &&
+                             filename.substr(filename.size() - 4) == ".prm",
+                           "parameter file \"" + filename +
+                             "\" must have the extension .prm");
+    prm.parse_input(filename);
+    parameters.parse_parameters(prm);
+  }
+} // namespace
+
+
+int
+main(int argc, char *argv[])
+{
+  using namespace viscofilm;
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool is_root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  const std::vector<std::string> args(argv + 1, argv + argc);
+
+  const auto fail = [is_root](const std::string &what, const std::string &message) {
+    if (is_root)
+      std::cerr << "viscofilm: " << what << ": " << message << std::endl;
+    return 1;
+  };
+
+  if (args.size() == 1 && (args[0] == "--help" || args[0] == "-h"))
+    {
+      if (is_root)
+        std::cout << usage;
+      return 0;
+    }
+
+  ParameterHandler prm;
+  Parameters       parameters;
+  Parameters::declare_parameters(prm);
+
+  if (args.size() == 1 && args[0] == "--print-parameters")
+    {
+      if (is_root)
+        prm.print_parameters(std::cout, ParameterHandler::PRM);
+      return 0;
+    }
+
+  const bool validate_only = (args.size() == 2 && args[0] == "--validate");
+  if (!(validate_only || (args.size() == 1 && args[0].rfind("-", 0) != 0)))
+    {
+      if (is_root)
+        std::cerr << "viscofilm: unknown command line; see below.\n" << usage;
+      return 2;
+    }
+  const std::string filename = args.back();
+
+  try
+    {
+      read_parameters(filename, prm, parameters);
+    }
+  catch (const std::exception &e)
+    {
+      return fail("error in the input", error_message(e));
+    }
+
+  if (validate_only)
+    {
+      if (is_root)
+        std::cout << filename << ": valid" << std::endl;
+      return 0;
+    }
+
+  try
+    {
+      Problem problem(parameters, prm, MPI_COMM_WORLD);
+      problem.run();
+    }
+  catch (const ExcInput &e)
+    {
+      return fail("error in the input", error_message(e));
+    }
+  catch (const std::exception &e)
+    {
+      return fail("run stopped", error_message(e));
+    }
+  return 0;
+}

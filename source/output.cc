@@ -1,0 +1,311 @@
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/fe/mapping_q1.h>
+
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+#include <deal.II/numerics/vector_tools_evaluate.h>
+
+#include <viscofilm/input.h>
+#include <viscofilm/output.h>
+#include <viscofilm/stokes.h>
+#include <viscofilm/volume_fraction.h>
+
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+namespace viscofilm
+{
+  namespace
+  {
+    /// ∇·u, vorticity ∂v/∂x − ∂u/∂y and |u·∇u| from the Stokes solution.
+    class FlowPostprocessor : public DataPostprocessor<2>
+    {
+    public:
+      void
+      evaluate_vector_field(const DataPostprocessorInputs::Vector<2> &inputs,
+                            std::vector<Vector<double>> &computed) const override
+      {
+        for (unsigned int q = 0; q < inputs.solution_values.size(); ++q)
+          {
+            const auto &   grad = inputs.solution_gradients[q];
+            const Tensor<1, 2> u({inputs.solution_values[q][0],
+                                  inputs.solution_values[q][1]});
+            Tensor<1, 2>   convection;
+            for (unsigned int i = 0; i < 2; ++i)
+              convection[i] = u * grad[i];
+            computed[q][0] = grad[0][0] + grad[1][1];
+            computed[q][1] = grad[1][0] - grad[0][1];
+            computed[q][2] = convection.norm();
+          }
+      }
+
+      std::vector<std::string>
+      get_names() const override
+      {
+        return {"divergence", "vorticity", "inertia"};
+      }
+
+      UpdateFlags
+      get_needed_update_flags() const override
+      {
+        return update_values | update_gradients;
+      }
+    };
+  } // namespace
+
+
+  CsvFile::CsvFile(const std::string &filename, const MPI_Comm mpi_communicator)
+    : is_writer(Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+  {
+    if (is_writer)
+      {
+        file.open(filename);
+        AssertThrow(file, ExcMessage("cannot open " + filename + " for writing"));
+        file << std::setprecision(17);
+      }
+  }
+
+
+  void
+  CsvFile::set(const std::string &column, const double value)
+  {
+    for (auto &entry : row)
+      if (entry.first == column)
+        {
+          entry.second = value;
+          return;
+        }
+    row.emplace_back(column, value);
+  }
+
+
+  void
+  CsvFile::write_row()
+  {
+    if (header.empty())
+      {
+        for (const auto &entry : row)
+          header.push_back(entry.first);
+        if (is_writer)
+          for (unsigned int c = 0; c < header.size(); ++c)
+            file << header[c] << (c + 1 < header.size() ? "," : "\n");
+      }
+    AssertThrow(row.size() == header.size(), ExcInternalError());
+    if (is_writer)
+      {
+        for (unsigned int c = 0; c < row.size(); ++c)
+          {
+            AssertThrow(row[c].first == header[c], ExcInternalError());
+            file << row[c].second << (c + 1 < row.size() ? "," : "\n");
+          }
+        file.flush();
+      }
+    row.clear();
+  }
+
+
+  void
+  Output::Parameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    prm.declare_entry("Directory",
+                      "output",
+                      Patterns::Anything(),
+                      "Directory for the results (created if missing): "
+                      "solution.xdmf with solution-NNNNN.h5, statistics.csv, "
+                      "probes.csv and parameters.prm.");
+    prm.declare_entry("Interval",
+                      "10",
+                      Patterns::Integer(0),
+                      "Time steps between HDF5 snapshots (the first and last "
+                      "step are always written); 0 writes none.");
+    prm.declare_entry("Probe points",
+                      "",
+                      Patterns::Anything(),
+                      "Points \"x1, y1; x2, y2; ...\" inside the channel where "
+                      "u, v, p and φ are written to probes.csv every step.");
+    prm.leave_subsection();
+  }
+
+
+  void
+  Output::Parameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    directory = prm.get("Directory");
+    interval  = prm.get_integer("Interval");
+    probe_points =
+      parse_point_list(prm.get("Probe points"), "Output/Probe points");
+    prm.leave_subsection();
+    check_input(!directory.empty(), "Output/Directory must not be empty");
+  }
+
+
+  Output::Output(const Parameters &                             parameters,
+                 const parallel::distributed::Triangulation<2> &triangulation)
+    : parameters(parameters)
+    , triangulation(triangulation)
+    , mpi_communicator(triangulation.get_communicator())
+  {}
+
+
+  void
+  Output::prepare(const ParameterHandler &prm)
+  {
+    // Rank 0 creates the directory; every rank learns whether it worked, so
+    // that all of them stop together if it did not.
+    std::string failure;
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        std::error_code error;
+        std::filesystem::create_directories(parameters.directory, error);
+        std::ofstream used(parameters.directory + "/parameters.prm");
+        if (error || !used)
+          failure = "Output/Directory: cannot write into \"" +
+                    parameters.directory + "\"" +
+                    (error ? ": " + error.message() : std::string());
+        else
+          prm.print_parameters(used, ParameterHandler::ShortPRM);
+      }
+    failure = Utilities::MPI::broadcast(mpi_communicator, failure, 0);
+    AssertThrow(failure.empty(), ExcInput(failure));
+    statistics_file = std::make_unique<CsvFile>(parameters.directory +
+                                                  "/statistics.csv",
+                                                mpi_communicator);
+    if (!parameters.probe_points.empty())
+      probes_file = std::make_unique<CsvFile>(parameters.directory + "/probes.csv",
+                                              mpi_communicator);
+  }
+
+
+  void
+  Output::mesh_changed()
+  {
+    probe_cache_is_current = false;
+  }
+
+
+  bool
+  Output::snapshot_due(const unsigned int step, const bool last_step) const
+  {
+    return parameters.interval > 0 &&
+           (step % parameters.interval == 0 || last_step);
+  }
+
+
+  void
+  Output::write_snapshot(const unsigned int    step,
+                         const double          time,
+                         const StokesSolver &  stokes,
+                         const VolumeFraction &volume_fraction)
+  {
+    DataOut<2> data_out;
+    data_out.attach_triangulation(triangulation);
+
+    const std::vector<std::string> names = {"velocity", "velocity", "pressure"};
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      interpretation = {DataComponentInterpretation::component_is_part_of_vector,
+                        DataComponentInterpretation::component_is_part_of_vector,
+                        DataComponentInterpretation::component_is_scalar};
+    data_out.add_data_vector(stokes.dof_handler(),
+                             stokes.solution(),
+                             names,
+                             interpretation);
+    const FlowPostprocessor flow_postprocessor;
+    data_out.add_data_vector(stokes.dof_handler(),
+                             stokes.solution(),
+                             flow_postprocessor);
+    data_out.add_data_vector(volume_fraction.dof_handler(),
+                             volume_fraction.solution(),
+                             "volume_fraction");
+    // Subdivide each cell once per polynomial degree: the Q2 nodes are kept.
+    data_out.build_patches(2);
+
+    DataOutBase::DataOutFilter filter(
+      DataOutBase::DataOutFilterFlags(/*filter duplicates*/ true,
+                                      /*xdmf hdf5*/ true));
+    data_out.write_filtered_data(filter);
+
+    // deal.II 9.4.1's parallel HDF5 writer fails on ranks without cells:
+    // write with the ranks that own cells only.
+    const bool owns_cells = triangulation.n_locally_owned_active_cells() > 0;
+    MPI_Comm   writers;
+    MPI_Comm_split(mpi_communicator,
+                   owns_cells ? 0 : MPI_UNDEFINED,
+                   Utilities::MPI::this_mpi_process(mpi_communicator),
+                   &writers);
+    std::ostringstream h5_name;
+    h5_name << "solution-" << std::setw(5) << std::setfill('0') << step << ".h5";
+    const XDMFEntry entry = owns_cells ?
+                              data_out.create_xdmf_entry(filter,
+                                                         h5_name.str(),
+                                                         time,
+                                                         writers) :
+                              XDMFEntry();
+    xdmf_entries.push_back(entry);
+    if (owns_cells)
+      {
+        data_out.write_hdf5_parallel(filter,
+                                     parameters.directory + "/" + h5_name.str(),
+                                     writers);
+        data_out.write_xdmf_file(xdmf_entries,
+                                 parameters.directory + "/solution.xdmf",
+                                 writers);
+        MPI_Comm_free(&writers);
+      }
+  }
+
+
+  void
+  Output::write_probes(const unsigned int    step,
+                       const double          time,
+                       const StokesSolver &  stokes,
+                       const VolumeFraction &volume_fraction)
+  {
+    if (!probes_file)
+      return;
+    const bool is_root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+    if (!probe_cache_is_current)
+      {
+        // Rank 0 asks for every probe; the others only answer.
+        probe_cache.reinit(is_root ? parameters.probe_points :
+                                     std::vector<Point<2>>(),
+                           triangulation,
+                           StaticMappingQ1<2>::mapping);
+        // Collective, so that no rank waits for one that threw.
+        const bool all_found =
+          Utilities::MPI::min(probe_cache.all_points_found() ? 1 : 0,
+                              mpi_communicator) == 1;
+        AssertThrow(all_found,
+                    ExcInput("Output/Probe points: a point lies outside the mesh"));
+        probe_cache_is_current = true;
+      }
+    const auto uvp = VectorTools::point_values<3>(probe_cache,
+                                                  stokes.dof_handler(),
+                                                  stokes.solution());
+    const auto phi = VectorTools::point_values<1>(probe_cache,
+                                                  volume_fraction.dof_handler(),
+                                                  volume_fraction.solution());
+    for (unsigned int i = 0; i < uvp.size(); ++i)
+      {
+        probes_file->set("step", step);
+        probes_file->set("time", time);
+        probes_file->set("x", parameters.probe_points[i][0]);
+        probes_file->set("y", parameters.probe_points[i][1]);
+        probes_file->set("u", uvp[i][0]);
+        probes_file->set("v", uvp[i][1]);
+        probes_file->set("p", uvp[i][2]);
+        probes_file->set("volume_fraction", phi[i]);
+        probes_file->write_row();
+      }
+  }
+
+
+  CsvFile &
+  Output::statistics()
+  {
+    return *statistics_file;
+  }
+} // namespace viscofilm

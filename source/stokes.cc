@@ -1,0 +1,594 @@
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/dofs/dof_renumbering.h>
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/affine_constraints.templates.h>
+#include <deal.II/lac/block_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+#include <viscofilm/input.h>
+#include <viscofilm/stokes.h>
+
+#include <cmath>
+
+namespace viscofilm
+{
+  namespace
+  {
+    /**
+     * Block upper-triangular preconditioner for [A B^T; B 0] (step-55's
+     * approach): the Schur complement B A^{-1} B^T is replaced by the
+     * (1/η)-weighted pressure mass matrix, which is spectrally equivalent to
+     * it for variable viscosity, and A^{-1} by one AMG V-cycle. FGMRES
+     * tolerates that the inner CG solve makes it vary from call to call.
+     */
+    class BlockSchurPreconditioner : public Subscriptor
+    {
+    public:
+      BlockSchurPreconditioner(
+        const TrilinosWrappers::BlockSparseMatrix &system_matrix,
+        const TrilinosWrappers::SparseMatrix &     weighted_mass,
+        const TrilinosWrappers::PreconditionAMG &  velocity_amg,
+        const TrilinosWrappers::PreconditionJacobi &mass_jacobi)
+        : system_matrix(system_matrix)
+        , weighted_mass(weighted_mass)
+        , velocity_amg(velocity_amg)
+        , mass_jacobi(mass_jacobi)
+      {}
+
+      void
+      vmult(TrilinosWrappers::MPI::BlockVector &      dst,
+            const TrilinosWrappers::MPI::BlockVector &src) const
+      {
+        // Pressure: −S z_p = r_p with S ≈ (1/η) M_p. A loose inner tolerance
+        // suffices: the mass matrix is only an approximation of S anyway.
+        {
+          SolverControl control(200, 1e-3 * src.block(1).l2_norm());
+          SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+          dst.block(1) = 0;
+          if (src.block(1).l2_norm() > 0)
+            cg.solve(weighted_mass, dst.block(1), src.block(1), mass_jacobi);
+          dst.block(1) *= -1.0;
+        }
+        // Velocity: A z_u = r_u − B^T z_p, one V-cycle.
+        {
+          TrilinosWrappers::MPI::Vector rhs(src.block(0));
+          system_matrix.block(0, 1).vmult(rhs, dst.block(1));
+          rhs.sadd(-1.0, src.block(0));
+          velocity_amg.vmult(dst.block(0), rhs);
+        }
+      }
+
+    private:
+      const TrilinosWrappers::BlockSparseMatrix & system_matrix;
+      const TrilinosWrappers::SparseMatrix &      weighted_mass;
+      const TrilinosWrappers::PreconditionAMG &   velocity_amg;
+      const TrilinosWrappers::PreconditionJacobi &mass_jacobi;
+    };
+
+
+    /// The cell's viscosities replaced by one average (or left as they are).
+    void
+    average_viscosity(const StokesSolver::Averaging averaging,
+                      const std::vector<double> &   JxW,
+                      std::vector<double> &         viscosity)
+    {
+      if (averaging == StokesSolver::Averaging::none)
+        return;
+      double weight = 0, sum = 0;
+      for (unsigned int q = 0; q < JxW.size(); ++q)
+        {
+          weight += JxW[q];
+          switch (averaging)
+            {
+              case StokesSolver::Averaging::arithmetic:
+                sum += JxW[q] * viscosity[q];
+                break;
+              case StokesSolver::Averaging::harmonic:
+                sum += JxW[q] / viscosity[q];
+                break;
+              default:
+                sum += JxW[q] * std::log(viscosity[q]);
+            }
+        }
+      const double mean =
+        (averaging == StokesSolver::Averaging::arithmetic ? sum / weight :
+         averaging == StokesSolver::Averaging::harmonic   ? weight / sum :
+                                                            std::exp(sum / weight));
+      std::fill(viscosity.begin(), viscosity.end(), mean);
+    }
+  } // namespace
+
+
+  void
+  StokesSolver::Parameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Stokes solver");
+    prm.declare_entry("Method",
+                      "block preconditioned",
+                      Patterns::Selection("block preconditioned|direct"),
+                      "block preconditioned: FGMRES with AMG on the velocity "
+                      "block and the 1/η-weighted pressure mass matrix for the "
+                      "Schur complement (scales to large meshes). direct: "
+                      "sparse LU (Amesos KLU) of the whole system, for tiny "
+                      "meshes and debugging.");
+    prm.declare_entry("Tolerance",
+                      "1e-8",
+                      Patterns::Double(0, 1),
+                      "Relative residual reduction of the Krylov solve, in (0, 1).");
+    prm.declare_entry("Maximum iterations",
+                      "1000",
+                      Patterns::Integer(1),
+                      "Maximum FGMRES iterations before the run stops with an "
+                      "error.");
+    prm.declare_entry("Viscosity averaging",
+                      "harmonic",
+                      Patterns::Selection("none|arithmetic|harmonic|geometric"),
+                      "Replace η(φ) in each cell by its cell mean (ASPECT's "
+                      "trick against large viscosity contrasts); none uses η at "
+                      "every quadrature point. See doc/performance.md.");
+    prm.declare_entry("Verbose",
+                      "true",
+                      Patterns::Bool(),
+                      "Print the iteration count of every solve.");
+    prm.leave_subsection();
+  }
+
+
+  void
+  StokesSolver::Parameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Stokes solver");
+    method = (prm.get("Method") == "direct" ? Method::direct :
+                                              Method::block_preconditioned);
+    tolerance      = prm.get_double("Tolerance");
+    max_iterations = prm.get_integer("Maximum iterations");
+    const std::string a = prm.get("Viscosity averaging");
+    averaging = (a == "none"       ? Averaging::none :
+                 a == "arithmetic" ? Averaging::arithmetic :
+                 a == "harmonic"   ? Averaging::harmonic :
+                                     Averaging::geometric);
+    verbose = prm.get_bool("Verbose");
+    prm.leave_subsection();
+    check_input(tolerance > 0,
+                "Stokes solver/Tolerance must be in (0, 1), got 0");
+  }
+
+
+  StokesSolver::StokesSolver(
+    const parallel::distributed::Triangulation<2> &triangulation,
+    const Parameters &                             parameters,
+    const Model &                                  model,
+    const BoundaryConditions &                     boundary_conditions)
+    : triangulation(triangulation)
+    , parameters(parameters)
+    , model(model)
+    , boundary_conditions(boundary_conditions)
+    , mpi_communicator(triangulation.get_communicator())
+    , fe(FE_Q<2>(2), 2, FE_Q<2>(1), 1)
+    , dofs(triangulation)
+  {}
+
+
+  void
+  StokesSolver::setup_dofs()
+  {
+    dofs.distribute_dofs(fe);
+    const std::vector<unsigned int> block_component = {0, 0, 1};
+    DoFRenumbering::component_wise(dofs, block_component);
+    const std::vector<types::global_dof_index> dofs_per_block =
+      DoFTools::count_dofs_per_fe_block(dofs, block_component);
+    const types::global_dof_index n_u = dofs_per_block[0],
+                                  n_p = dofs_per_block[1];
+
+    const IndexSet &owned = dofs.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dofs, locally_relevant_dofs);
+    owned_partitioning    = {owned.get_view(0, n_u), owned.get_view(n_u, n_u + n_p)};
+    relevant_partitioning = {locally_relevant_dofs.get_view(0, n_u),
+                             locally_relevant_dofs.get_view(n_u, n_u + n_p)};
+
+    // The constrained dofs do not change in time, only their values do.
+    make_constraints(0.0);
+    const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
+
+    system_matrix.clear();
+    preconditioner_matrix.clear();
+    monolithic_matrix.clear();
+    if (parameters.method == Method::direct)
+      {
+        TrilinosWrappers::SparsityPattern sparsity(owned,
+                                                   owned,
+                                                   locally_relevant_dofs,
+                                                   mpi_communicator);
+        DoFTools::make_sparsity_pattern(dofs, sparsity, constraints, false, rank);
+        sparsity.compress();
+        monolithic_matrix.reinit(sparsity);
+      }
+    else
+      {
+        Table<2, DoFTools::Coupling> coupling(3, 3);
+        Table<2, DoFTools::Coupling> mass_coupling(3, 3);
+        for (unsigned int c = 0; c < 3; ++c)
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              coupling[c][d] = (c == 2 && d == 2) ? DoFTools::none :
+                                                    DoFTools::always;
+              mass_coupling[c][d] = (c == 2 && d == 2) ? DoFTools::always :
+                                                         DoFTools::none;
+            }
+        TrilinosWrappers::BlockSparsityPattern sparsity(owned_partitioning,
+                                                        owned_partitioning,
+                                                        relevant_partitioning,
+                                                        mpi_communicator);
+        DoFTools::make_sparsity_pattern(dofs, coupling, sparsity, constraints, false, rank);
+        sparsity.compress();
+        system_matrix.reinit(sparsity);
+
+        TrilinosWrappers::BlockSparsityPattern mass_sparsity(owned_partitioning,
+                                                             owned_partitioning,
+                                                             relevant_partitioning,
+                                                             mpi_communicator);
+        DoFTools::make_sparsity_pattern(
+          dofs, mass_coupling, mass_sparsity, constraints, false, rank);
+        mass_sparsity.compress();
+        preconditioner_matrix.reinit(mass_sparsity);
+      }
+
+    system_rhs.reinit(owned_partitioning, mpi_communicator);
+    current_solution.reinit(owned_partitioning, relevant_partitioning, mpi_communicator);
+    old_solution.reinit(owned_partitioning, relevant_partitioning, mpi_communicator);
+    invalidate_matrix();
+  }
+
+
+  void
+  StokesSolver::make_constraints(const double time)
+  {
+    constraints.clear();
+    constraints.reinit(locally_relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dofs, constraints);
+    boundary_conditions.constrain_velocity(dofs, time, constraints);
+
+    // A direct solver needs a nonsingular matrix: without an outflow boundary
+    // pin the first pressure dof (a coarse-mesh vertex, never hanging); the
+    // pressure is shifted to mean zero after the solve.
+    if (parameters.method == Method::direct && !boundary_conditions.has_outflow())
+      {
+        const types::global_dof_index first_pressure_dof =
+          owned_partitioning[0].size();
+        if (locally_relevant_dofs.is_element(first_pressure_dof))
+          {
+            AssertThrow(!constraints.is_constrained(first_pressure_dof),
+                        ExcInternalError());
+            constraints.add_line(first_pressure_dof);
+          }
+      }
+    constraints.close();
+  }
+
+
+  void
+  StokesSolver::invalidate_matrix()
+  {
+    matrix_is_current         = false;
+    preconditioner_is_current = false;
+  }
+
+
+  void
+  StokesSolver::assemble(const Coefficients &coefficients)
+  {
+    make_constraints(coefficients.time);
+
+    const bool assemble_matrix = !matrix_is_current;
+    const bool direct = (parameters.method == Method::direct);
+    if (assemble_matrix && direct)
+      monolithic_matrix = 0;
+    else if (assemble_matrix)
+      {
+        system_matrix         = 0;
+        preconditioner_matrix = 0;
+      }
+    system_rhs = 0;
+
+    const QGauss<2> quadrature(fe.degree + 1);
+    FEValues<2>     fe_values(fe,
+                          quadrature,
+                          update_values | update_gradients |
+                            update_quadrature_points | update_JxW_values);
+    FEValues<2>     phi_fe_values(coefficients.volume_fraction_dof_handler->get_fe(),
+                              quadrature,
+                              update_values);
+
+    const unsigned int dofs_per_cell = fe.n_dofs_per_cell();
+    const unsigned int n_q_points    = quadrature.size();
+    const FEValuesExtractors::Vector velocities(0);
+    const FEValuesExtractors::Scalar pressure(2);
+
+    FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
+    FullMatrix<double> cell_mass(dofs_per_cell, dofs_per_cell);
+    Vector<double>     cell_rhs(dofs_per_cell);
+    std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
+
+    std::vector<double>                volume_fraction(n_q_points);
+    std::vector<double>                viscosity(n_q_points);
+    std::vector<Tensor<1, 2>>          old_velocity(n_q_points);
+    std::vector<Vector<double>>        body_force(n_q_points, Vector<double>(2));
+    std::vector<SymmetricTensor<2, 2>> phi_tau(n_q_points);
+
+    std::vector<Tensor<1, 2>>          phi_u(dofs_per_cell);
+    std::vector<SymmetricTensor<2, 2>> symgrad_phi_u(dofs_per_cell);
+    std::vector<double>                div_phi_u(dofs_per_cell);
+    std::vector<double>                phi_p(dofs_per_cell);
+
+    // Res ∂u/∂t by implicit Euler: (Res/k)(u − u^n, v).
+    const double mass_coefficient =
+      model.reynolds_number / coefficients.time_step;
+    coefficients.body_force->set_time(coefficients.time);
+
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          const DoFHandler<2>::active_cell_iterator phi_cell(
+            &triangulation,
+            cell->level(),
+            cell->index(),
+            coefficients.volume_fraction_dof_handler);
+          phi_fe_values.reinit(phi_cell);
+          phi_fe_values.get_function_values(*coefficients.volume_fraction,
+                                            volume_fraction);
+          for (unsigned int q = 0; q < n_q_points; ++q)
+            viscosity[q] = model.viscosity(volume_fraction[q]);
+          average_viscosity(parameters.averaging, fe_values.get_JxW_values(), viscosity);
+
+          fe_values[velocities].get_function_values(old_solution, old_velocity);
+          coefficients.body_force->vector_value_list(
+            fe_values.get_quadrature_points(), body_force);
+          if (coefficients.elastic_stress)
+            coefficients.elastic_stress(cell, phi_tau);
+
+          cell_matrix = 0;
+          cell_mass   = 0;
+          cell_rhs    = 0;
+          for (unsigned int q = 0; q < n_q_points; ++q)
+            {
+              for (unsigned int k = 0; k < dofs_per_cell; ++k)
+                {
+                  phi_u[k]         = fe_values[velocities].value(k, q);
+                  symgrad_phi_u[k] = fe_values[velocities].symmetric_gradient(k, q);
+                  div_phi_u[k]     = fe_values[velocities].divergence(k, q);
+                  phi_p[k]         = fe_values[pressure].value(k, q);
+                }
+              const double       JxW = fe_values.JxW(q);
+              const Tensor<1, 2> force({body_force[q][0], body_force[q][1]});
+              const Tensor<1, 2> rhs_vector =
+                mass_coefficient * old_velocity[q] + force;
+
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                    {
+                      cell_matrix(i, j) +=
+                        (mass_coefficient * phi_u[i] * phi_u[j] +
+                         2 * viscosity[q] * (symgrad_phi_u[i] * symgrad_phi_u[j]) -
+                         div_phi_u[i] * phi_p[j] - phi_p[i] * div_phi_u[j]) *
+                        JxW;
+                      cell_mass(i, j) += phi_p[i] * phi_p[j] / viscosity[q] * JxW;
+                    }
+                  cell_rhs(i) += (rhs_vector * phi_u[i] -
+                                  phi_tau[q] * symgrad_phi_u[i]) *
+                                 JxW;
+                }
+            }
+
+          cell->get_dof_indices(local_dof_indices);
+          if (assemble_matrix)
+            {
+              if (direct)
+                constraints.distribute_local_to_global(cell_matrix,
+                                                       local_dof_indices,
+                                                       monolithic_matrix);
+              else
+                {
+                  constraints.distribute_local_to_global(cell_matrix,
+                                                         local_dof_indices,
+                                                         system_matrix);
+                  constraints.distribute_local_to_global(cell_mass,
+                                                         local_dof_indices,
+                                                         preconditioner_matrix);
+                }
+            }
+          constraints.distribute_local_to_global(cell_rhs,
+                                                 local_dof_indices,
+                                                 system_rhs,
+                                                 cell_matrix);
+        }
+
+    if (assemble_matrix)
+      {
+        if (direct)
+          monolithic_matrix.compress(VectorOperation::add);
+        else
+          {
+            system_matrix.compress(VectorOperation::add);
+            preconditioner_matrix.compress(VectorOperation::add);
+          }
+        matrix_is_current         = true;
+        preconditioner_is_current = false;
+      }
+    system_rhs.compress(VectorOperation::add);
+  }
+
+
+  void
+  StokesSolver::build_preconditioner()
+  {
+    TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
+    const FEValuesExtractors::Vector                  velocities(0);
+    DoFTools::extract_constant_modes(dofs,
+                                     fe.component_mask(velocities),
+                                     amg_data.constant_modes);
+    amg_data.elliptic              = true;
+    amg_data.higher_order_elements = true;
+    amg_data.smoother_sweeps       = 2;
+    amg_data.aggregation_threshold = 0.02;
+    velocity_amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+    velocity_amg->initialize(system_matrix.block(0, 0), amg_data);
+
+    mass_jacobi = std::make_unique<TrilinosWrappers::PreconditionJacobi>();
+    mass_jacobi->initialize(preconditioner_matrix.block(1, 1));
+    preconditioner_is_current = true;
+  }
+
+
+  unsigned int
+  StokesSolver::solve()
+  {
+    TrilinosWrappers::MPI::BlockVector distributed(owned_partitioning,
+                                                   mpi_communicator);
+    unsigned int iterations = 0;
+    if (parameters.method == Method::direct)
+      solve_direct(distributed);
+    else
+      iterations = solve_block_preconditioned(distributed);
+    constraints.distribute(distributed);
+    AssertThrow(std::isfinite(distributed.l2_norm()),
+                ExcMessage("the Stokes solution is not finite (NaN or inf)"));
+    normalize_pressure(distributed);
+    current_solution = distributed;
+    return iterations;
+  }
+
+
+  unsigned int
+  StokesSolver::solve_block_preconditioned(
+    TrilinosWrappers::MPI::BlockVector &distributed)
+  {
+    if (!preconditioner_is_current)
+      build_preconditioner();
+
+    const double rhs_norm = system_rhs.l2_norm();
+    unsigned int iterations = 0;
+    if (rhs_norm > 0)
+      {
+        distributed = current_solution; // the last solution as first guess
+        SolverControl control(parameters.max_iterations,
+                              parameters.tolerance * rhs_norm);
+        SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(
+          control,
+          SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(100));
+        const BlockSchurPreconditioner preconditioner(system_matrix,
+                                                      preconditioner_matrix.block(1, 1),
+                                                      *velocity_amg,
+                                                      *mass_jacobi);
+        try
+          {
+            solver.solve(system_matrix, distributed, system_rhs, preconditioner);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            throw ExcMessage("the Stokes solver (FGMRES) did not converge in " +
+                             std::to_string(e.last_step) +
+                             " iterations: residual " +
+                             Utilities::to_string(e.last_residual) +
+                             ", target " +
+                             Utilities::to_string(control.tolerance()) +
+                             " (Stokes solver/Maximum iterations = " +
+                             std::to_string(parameters.max_iterations) + ")");
+          }
+        iterations = control.last_step();
+      }
+    return iterations;
+  }
+
+
+  void
+  StokesSolver::solve_direct(TrilinosWrappers::MPI::BlockVector &distributed)
+  {
+    const IndexSet &              owned = dofs.locally_owned_dofs();
+    TrilinosWrappers::MPI::Vector rhs(owned, mpi_communicator);
+    TrilinosWrappers::MPI::Vector solution(owned, mpi_communicator);
+    for (const auto i : owned)
+      rhs(i) = system_rhs(i);
+    rhs.compress(VectorOperation::insert);
+
+    SolverControl                  control(1, 0);
+    TrilinosWrappers::SolverDirect solver(control);
+    solver.solve(monolithic_matrix, solution, rhs);
+
+    for (const auto i : owned)
+      distributed(i) = solution(i);
+    distributed.compress(VectorOperation::insert);
+  }
+
+
+  void
+  StokesSolver::normalize_pressure(TrilinosWrappers::MPI::BlockVector &distributed)
+  {
+    if (boundary_conditions.has_outflow())
+      return;
+    current_solution = distributed;
+    const double mean_pressure =
+      VectorTools::compute_mean_value(dofs, QGauss<2>(3), current_solution, 2);
+    distributed.block(1).add(-mean_pressure);
+  }
+
+
+  void
+  StokesSolver::advance_time()
+  {
+    old_solution = current_solution;
+  }
+
+
+  const DoFHandler<2> &
+  StokesSolver::dof_handler() const
+  {
+    return dofs;
+  }
+
+
+  const TrilinosWrappers::MPI::BlockVector &
+  StokesSolver::solution() const
+  {
+    return current_solution;
+  }
+
+
+  types::global_dof_index
+  StokesSolver::n_dofs() const
+  {
+    return dofs.n_dofs();
+  }
+
+
+  double
+  StokesSolver::max_velocity() const
+  {
+    const Quadrature<2> nodes(fe.base_element(0).get_unit_support_points());
+    FEValues<2>         fe_values(fe, nodes, update_values);
+    std::vector<Tensor<1, 2>> velocity(nodes.size());
+    const FEValuesExtractors::Vector velocities(0);
+    double                    max_speed = 0;
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[velocities].get_function_values(current_solution, velocity);
+          for (const Tensor<1, 2> &u : velocity)
+            max_speed = std::max(max_speed, u.norm());
+        }
+    return Utilities::MPI::max(max_speed, mpi_communicator);
+  }
+} // namespace viscofilm

@@ -1,0 +1,35 @@
+#include <viscofilm/input.h>
+#include <viscofilm/time_stepping.h>
+
+namespace viscofilm
+{
+  void
+  TimeStepping::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time stepping");
+    prm.declare_entry("Time step",
+                      "0.003125",
+                      Patterns::Double(0),
+                      "Time step k in units of T0 = 60 s, > 0. The thesis used "
+                      "k = 0.1 Δx = 0.003125.");
+    prm.declare_entry("Number of steps",
+                      "200",
+                      Patterns::Integer(0),
+                      "Number of time steps to take (0: write the initial "
+                      "state only).");
+    prm.leave_subsection();
+  }
+
+
+  void
+  TimeStepping::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time stepping");
+    time_step = prm.get_double("Time step");
+    n_steps   = prm.get_integer("Number of steps");
+    prm.leave_subsection();
+    check_input(time_step > 0,
+                "Time stepping/Time step must be > 0, got " +
+                  std::to_string(time_step));
+  }
+} // namespace viscofilm

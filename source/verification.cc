@@ -1,0 +1,95 @@
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <viscofilm/stokes.h>
+#include <viscofilm/verification.h>
+
+#include <cmath>
+
+namespace viscofilm
+{
+  void
+  Verification::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Verification");
+    ParsedExpression::declare(prm,
+                              "Body force",
+                              "0; 0",
+                              "Body force \"fx; fy\" added to the momentum "
+                              "equation, e.g. for a manufactured solution.");
+    prm.declare_entry("Exact solution",
+                      "",
+                      Patterns::Anything(),
+                      "Empty, or the exact \"u; v; p\" as a muparser expression "
+                      "in x, y, t: its L2 errors are written to statistics.csv "
+                      "(the pressure error modulo a constant when no boundary "
+                      "is 'outflow').");
+    declare_function_constants(prm);
+    prm.leave_subsection();
+  }
+
+
+  void
+  Verification::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Verification");
+    const std::string constants = prm.get("Function constants");
+    body_force.parse(prm.get("Body force"),
+                     constants,
+                     "Verification/Body force");
+    exact_solution.reset();
+    if (!prm.get("Exact solution").empty())
+      {
+        exact_solution.emplace(3);
+        exact_solution->parse(prm.get("Exact solution"),
+                              constants,
+                              "Verification/Exact solution");
+      }
+    prm.leave_subsection();
+  }
+
+
+  std::pair<double, double>
+  Verification::l2_errors(const StokesSolver &stokes,
+                          const double        time,
+                          const bool          pressure_up_to_constant) const
+  {
+    Assert(exact_solution, ExcInternalError());
+    FunctionParser<2> &exact = exact_solution->function();
+    exact.set_time(time);
+
+    const DoFHandler<2> &dof_handler = stokes.dof_handler();
+    const QGauss<2>      quadrature(dof_handler.get_fe().degree + 2);
+    FEValues<2>          fe_values(dof_handler.get_fe(),
+                          quadrature,
+                          update_values | update_quadrature_points |
+                            update_JxW_values);
+    std::vector<Vector<double>> numerical(quadrature.size(), Vector<double>(3));
+    std::vector<Vector<double>> reference(quadrature.size(), Vector<double>(3));
+
+    // sums: ∫|u − u_ex|², ∫(p − p_ex)², ∫(p − p_ex), |Ω|
+    double sums[4] = {0, 0, 0, 0};
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(stokes.solution(), numerical);
+          exact.vector_value_list(fe_values.get_quadrature_points(), reference);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const double du = numerical[q][0] - reference[q][0];
+              const double dv = numerical[q][1] - reference[q][1];
+              const double dp = numerical[q][2] - reference[q][2];
+              sums[0] += (du * du + dv * dv) * fe_values.JxW(q);
+              sums[1] += dp * dp * fe_values.JxW(q);
+              sums[2] += dp * fe_values.JxW(q);
+              sums[3] += fe_values.JxW(q);
+            }
+        }
+    Utilities::MPI::sum(sums, dof_handler.get_communicator(), sums);
+    const double pressure_error_squared =
+      sums[1] - (pressure_up_to_constant ? sums[2] * sums[2] / sums[3] : 0.0);
+    return {std::sqrt(sums[0]), std::sqrt(std::max(pressure_error_squared, 0.0))};
+  }
+} // namespace viscofilm
