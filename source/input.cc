@@ -4,6 +4,7 @@
 
 #include <viscofilm/input.h>
 
+#include <iostream>
 #include <map>
 #include <sstream>
 
@@ -14,11 +15,25 @@ namespace viscofilm
   {
     if (const auto *deal_ii = dynamic_cast<const ExceptionBase *>(&e))
       {
+        // One line: ParameterHandler's messages span several.
         std::ostringstream info;
         deal_ii->print_info(info);
-        return Utilities::trim(info.str());
+        std::istringstream words(info.str());
+        std::string        word, message;
+        while (words >> word)
+          message += (message.empty() ? "" : " ") + word;
+        return message;
       }
     return e.what();
+  }
+
+
+  std::string
+  to_text(const double value)
+  {
+    std::ostringstream text;
+    text << value;
+    return text.str();
   }
 
 
@@ -135,6 +150,10 @@ namespace viscofilm
                       "got \"" + constants_text + "\"");
       }
 
+    // deal.II prints muparser's diagnosis to std::cerr before it throws; the
+    // message below says it once, with the parameter's name.
+    std::ostringstream  muparser_diagnosis;
+    std::streambuf *const cerr_buffer = std::cerr.rdbuf(muparser_diagnosis.rdbuf());
     try
       {
         parser = std::make_unique<FunctionParser<2>>(n_components);
@@ -142,9 +161,11 @@ namespace viscofilm
         // muparser compiles lazily: evaluate once so errors surface here.
         Vector<double> values(n_components);
         parser->vector_value(Point<2>(0.5, 0.5), values);
+        std::cerr.rdbuf(cerr_buffer);
       }
     catch (const std::exception &e)
       {
+        std::cerr.rdbuf(cerr_buffer);
         check_input(false,
                     parameter + " = \"" + text +
                       "\" is not a valid expression in x, y, t and the "

@@ -49,10 +49,10 @@ namespace viscofilm
 
     check_input(viscosity_ratio > 0,
                 "Model/Viscosity ratio must be > 0, got " +
-                  std::to_string(viscosity_ratio));
+                  to_text(viscosity_ratio));
     check_input(weissenberg > 0,
                 "Model/Weissenberg number must be > 0, got " +
-                  std::to_string(weissenberg));
+                  to_text(weissenberg));
   }
 
 

@@ -30,8 +30,8 @@ namespace viscofilm
 
     for (const Point<2> &p : output.probe_points)
       check_input(geometry.contains(p),
-                  "Output/Probe points: the point (" + std::to_string(p[0]) +
-                    ", " + std::to_string(p[1]) +
+                  "Output/Probe points: the point (" + to_text(p[0]) +
+                    ", " + to_text(p[1]) +
                     ") lies outside the channel given by Geometry/Lower left "
                     "corner and Geometry/Upper right corner");
   }

@@ -30,6 +30,6 @@ namespace viscofilm
     prm.leave_subsection();
     check_input(time_step > 0,
                 "Time stepping/Time step must be > 0, got " +
-                  std::to_string(time_step));
+                  to_text(time_step));
   }
 } // namespace viscofilm

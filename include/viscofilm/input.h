@@ -27,6 +27,10 @@ namespace viscofilm
   std::string
   error_message(const std::exception &e);
 
+  /// A number as a user wrote it: 0.5, not 0.500000.
+  std::string
+  to_text(const double value);
+
   /// Throw ExcInput with @p message unless @p condition holds.
   void
   check_input(const bool condition, const std::string &message);

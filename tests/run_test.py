@@ -1,0 +1,223 @@
+#!/usr/bin/env python3
+"""Run one viscofilm test case and compare what it produced with a reference.
+
+Modes
+  run          run FILE.prm; extract the --compare columns of the CSV files the
+               run wrote and numdiff them against --reference.
+  convergence  run FILE.prm at each of --refinements; tabulate the errors in
+               the last row of statistics.csv and the observed rates, check the
+               rates against --min-rates, and numdiff the table.
+  error        run FILE.prm (or the --args command line), expect a non-zero
+               exit status, the message in --reference on stderr, and no
+               output directory.
+  hdf5         run FILE.prm and list the datasets of every snapshot named in
+               solution.xdmf (needs h5py), numdiff the listing.
+
+Set VISCOFILM_BLESS=1 to write the reference instead of comparing (only after
+checking the output against the analytic answer by hand).
+Only the standard library is used, except h5py in mode hdf5.
+"""
+import argparse
+import csv
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+
+def fail(message):
+    print("FAILED: " + message)
+    sys.exit(1)
+
+
+def mpi_environment():
+    env = dict(os.environ)
+    if os.geteuid() == 0:  # Open MPI refuses root unless told
+        env["OMPI_ALLOW_RUN_AS_ROOT"] = "1"
+        env["OMPI_ALLOW_RUN_AS_ROOT_CONFIRM"] = "1"
+    return env
+
+
+def run_viscofilm(opts, args, workdir):
+    command = [opts.mpiexec, "-np", str(opts.ranks)] + opts.mpiexec_flags.split()
+    command += [opts.viscofilm] + args
+    result = subprocess.run(command, cwd=workdir, env=mpi_environment(),
+                            capture_output=True, text=True, timeout=opts.timeout)
+    with open(os.path.join(workdir, "screen.log"), "w") as log:
+        log.write(result.stdout + "\n--- stderr ---\n" + result.stderr)
+    return result
+
+
+def read_prm_setting(prm_text, name):
+    match = re.search(r"^\s*set\s+" + re.escape(name) + r"\s*=\s*(.*?)\s*(#.*)?$",
+                      prm_text, re.MULTILINE)
+    return match.group(1) if match else None
+
+
+def output_directory(workdir, prm):
+    with open(prm) as f:
+        directory = read_prm_setting(f.read(), "Directory")
+    return os.path.join(workdir, directory or "output")
+
+
+def read_csv(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def extract_columns(directory, specs):
+    """'statistics.csv:step,time,max_velocity' -> the selected columns."""
+    lines = []
+    for spec in specs:
+        filename, columns = spec.split(":")
+        columns = columns.split(",")
+        rows = read_csv(os.path.join(directory, filename))
+        missing = [c for c in columns if rows and c not in rows[0]]
+        if missing:
+            fail("%s has no column(s) %s" % (filename, ", ".join(missing)))
+        lines.append("# " + filename + ": " + ",".join(columns))
+        lines += [",".join(row[c] for c in columns) for row in rows]
+    return "\n".join(lines) + "\n"
+
+
+def compare(opts, text, workdir):
+    produced = os.path.join(workdir, "test.output")
+    with open(produced, "w") as f:
+        f.write(text)
+    if os.environ.get("VISCOFILM_BLESS") == "1":
+        shutil.copy(produced, opts.reference)
+        print("blessed " + opts.reference)
+        return
+    command = ["numdiff", "-q", "-s", " \t\n,;:=()"] + opts.numdiff.split()
+    command += [opts.reference, produced]
+    if subprocess.run(command).returncode != 0:
+        subprocess.run(["numdiff", "-s", " \t\n,;:=()"] + opts.numdiff.split()
+                       + [opts.reference, produced])
+        fail("output differs from %s beyond %s" % (opts.reference, opts.numdiff))
+    print("output matches %s (%s)" % (opts.reference, opts.numdiff))
+
+
+def mode_run(opts, workdir):
+    prm = shutil.copy(opts.prm, workdir)
+    result = run_viscofilm(opts, [os.path.basename(prm)], workdir)
+    if result.returncode != 0:
+        fail("viscofilm exited with %d:\n%s" % (result.returncode, result.stderr))
+    compare(opts, extract_columns(output_directory(workdir, prm), opts.compare),
+            workdir)
+
+
+def mode_convergence(opts, workdir):
+    with open(opts.prm) as f:
+        template = f.read()
+    levels = [int(r) for r in opts.refinements.split(",")]
+    min_rates = dict(item.split("=") for item in opts.min_rates.split(","))
+    errors = {name: [] for name in min_rates}
+    for level in levels:
+        text = re.sub(r"(set\s+Initial global refinement\s*=\s*)\d+",
+                      r"\g<1>%d" % level, template)
+        prm = os.path.join(workdir, "refinement-%d.prm" % level)
+        with open(prm, "w") as f:
+            f.write(text)
+        result = run_viscofilm(opts, [os.path.basename(prm)], workdir)
+        if result.returncode != 0:
+            fail("viscofilm exited with %d at refinement %d:\n%s"
+                 % (result.returncode, level, result.stderr))
+        last = read_csv(os.path.join(output_directory(workdir, prm),
+                                     "statistics.csv"))[-1]
+        for name in errors:
+            errors[name].append(float(last[name]))
+
+    lines = ["refinement," + ",".join("%s,rate" % n for n in errors)]
+    for i, level in enumerate(levels):
+        row = [str(level)]
+        for name, values in errors.items():
+            rate = (math.log2(values[i - 1] / values[i]) if i > 0 else float("nan"))
+            row += ["%.3e" % values[i], "%.2f" % rate if i > 0 else "-"]
+            if i > 0 and rate < float(min_rates[name]):
+                print("\n".join(lines + [",".join(row)]))
+                fail("%s converges at rate %.2f between refinements %d and %d, "
+                     "expected >= %s" % (name, rate, levels[i - 1], level,
+                                         min_rates[name]))
+        lines.append(",".join(row))
+    table = "\n".join(lines) + "\n"
+    print(table)
+    compare(opts, table, workdir)
+
+
+def mode_error(opts, workdir):
+    if opts.prm:
+        shutil.copy(opts.prm, workdir)
+        args = [os.path.basename(opts.prm)]
+        directory = output_directory(workdir, opts.prm)
+    else:
+        args = opts.args.split()
+        directory = None
+    result = run_viscofilm(opts, args, workdir)
+    if result.returncode == 0:
+        fail("viscofilm accepted bad input (exit status 0)")
+    if "Stacktrace" in result.stderr or "----" in result.stderr.split("\n")[0]:
+        fail("the error message carries a backtrace:\n" + result.stderr)
+    if directory and os.path.exists(directory):
+        fail("an output directory was written for bad input: " + directory)
+    # Open MPI adds its own banner (a line of dashes) after our message.
+    ours = []
+    for line in result.stderr.splitlines():
+        if line.startswith("-----"):
+            break
+        ours.append(line)
+    compare(opts, "exit status %d\n" % min(result.returncode, 2) + "\n".join(ours)
+            + "\n", workdir)
+
+
+def mode_hdf5(opts, workdir):
+    import h5py  # Debian's python3-h5py
+
+    prm = shutil.copy(opts.prm, workdir)
+    result = run_viscofilm(opts, [os.path.basename(prm)], workdir)
+    if result.returncode != 0:
+        fail("viscofilm exited with %d:\n%s" % (result.returncode, result.stderr))
+    directory = output_directory(workdir, prm)
+    with open(os.path.join(directory, "solution.xdmf")) as f:
+        files = sorted(set(re.findall(r"(solution-\d+\.h5):", f.read())))
+    if not files:
+        fail("solution.xdmf names no HDF5 file")
+    lines = []
+    for name in files:
+        with h5py.File(os.path.join(directory, name), "r") as h5:
+            for key in sorted(h5.keys()):
+                data = h5[key][()]
+                lines.append("%s %s shape %s max|.| %.6e" % (
+                    name, key, "x".join(map(str, data.shape)), abs(data).max()))
+    compare(opts, "\n".join(lines) + "\n", workdir)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--mode", required=True,
+                        choices=["run", "convergence", "error", "hdf5"])
+    parser.add_argument("--viscofilm", required=True)
+    parser.add_argument("--mpiexec", default="mpirun")
+    parser.add_argument("--mpiexec-flags", default="")
+    parser.add_argument("--ranks", type=int, default=1)
+    parser.add_argument("--workdir", required=True)
+    parser.add_argument("--prm")
+    parser.add_argument("--args", default="")
+    parser.add_argument("--reference", required=True)
+    parser.add_argument("--compare", action="append", default=[])
+    parser.add_argument("--numdiff", default="-a 0 -r 0")
+    parser.add_argument("--refinements", default="2,3,4")
+    parser.add_argument("--min-rates", default="")
+    parser.add_argument("--timeout", type=float, default=600)
+    opts = parser.parse_args()
+
+    shutil.rmtree(opts.workdir, ignore_errors=True)
+    os.makedirs(opts.workdir)
+    {"run": mode_run, "convergence": mode_convergence, "error": mode_error,
+     "hdf5": mode_hdf5}[opts.mode](opts, opts.workdir)
+    print("PASSED")
+
+
+if __name__ == "__main__":
+    main()
