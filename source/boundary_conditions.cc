@@ -66,6 +66,11 @@ namespace viscofilm
                                   "0; 0",
                                   "Boundary velocity \"u; v\".");
         declare_function_constants(prm);
+        prm.declare_entry("Volume fraction",
+                          "0",
+                          Patterns::Double(0, 1),
+                          "φ on the parts of this boundary where the flow "
+                          "enters (u·n < 0), in [0, 1]. The thesis: 0.");
         prm.leave_subsection();
       }
     prm.leave_subsection();
@@ -87,6 +92,7 @@ namespace viscofilm
                                 prm.get("Function constants"),
                                 "Boundary conditions/" + boundary.name +
                                   "/Velocity");
+        boundary.volume_fraction = prm.get_double("Volume fraction");
         prm.leave_subsection();
       }
     prm.leave_subsection();

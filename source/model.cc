@@ -26,12 +26,18 @@ namespace viscofilm
     prm.declare_entry("Slip parameter",
                       "1",
                       Patterns::Double(-1, 1),
-                      "Johnson–Segalman a in [-1, 1]: 1 upper convected "
+                      "Johnson–Segalman a in [-1, 1], not 0: 1 upper convected "
                       "(Oldroyd-B), -1 lower convected.");
     prm.declare_entry("Diffusion coefficient",
                       "1e-5",
                       Patterns::Double(0),
                       "D in ∂φ/∂t + u·∇φ = ∇·(D φ ∇φ) (thesis eq. 3.45), >= 0.");
+    prm.declare_entry("Viscoelastic",
+                      "true",
+                      Patterns::Bool(),
+                      "true: the Oldroyd-B / Johnson–Segalman stress τ acts on "
+                      "the flow. false: τ ≡ 0 (a Newtonian mixture of viscosity "
+                      "η(φ)); no departure feet for the stress, no Picard loop.");
     prm.leave_subsection();
   }
 
@@ -45,11 +51,15 @@ namespace viscofilm
     weissenberg     = prm.get_double("Weissenberg number");
     slip_parameter  = prm.get_double("Slip parameter");
     diffusion       = prm.get_double("Diffusion coefficient");
+    viscoelastic    = prm.get_bool("Viscoelastic");
     prm.leave_subsection();
 
     check_input(viscosity_ratio > 0,
                 "Model/Viscosity ratio must be > 0, got " +
                   to_text(viscosity_ratio));
+    check_input(slip_parameter != 0,
+                "Model/Slip parameter must be in [-1, 1] and not 0: the "
+                "conformation shift ηp/(a Wi) is undefined at a = 0 (MODEL.md §2)");
     check_input(weissenberg > 0,
                 "Model/Weissenberg number must be > 0, got " +
                   to_text(weissenberg));
@@ -71,6 +81,7 @@ namespace viscofilm
         << ", viscosity ratio ηp/ηs = " << viscosity_ratio
         << ", Weissenberg number Wi = " << weissenberg
         << ", slip parameter a = " << slip_parameter
-        << ", diffusion D = " << diffusion << std::endl;
+        << ", diffusion D = " << diffusion
+        << (viscoelastic ? "" : "; elastic stress off") << std::endl;
   }
 } // namespace viscofilm

@@ -9,6 +9,7 @@
 #include <viscofilm/input.h>
 #include <viscofilm/output.h>
 #include <viscofilm/stokes.h>
+#include <viscofilm/stress.h>
 #include <viscofilm/volume_fraction.h>
 
 #include <filesystem>
@@ -199,7 +200,8 @@ namespace viscofilm
   Output::write_snapshot(const unsigned int    step,
                          const double          time,
                          const StokesSolver &  stokes,
-                         const VolumeFraction &volume_fraction)
+                         const VolumeFraction &volume_fraction,
+                         const ElasticStress & stress)
   {
     DataOut<2> data_out;
     data_out.attach_triangulation(triangulation);
@@ -220,6 +222,7 @@ namespace viscofilm
     data_out.add_data_vector(volume_fraction.dof_handler(),
                              volume_fraction.solution(),
                              "volume_fraction");
+    stress.add_output(data_out);
     // Subdivide each cell once per polynomial degree: the Q2 nodes are kept.
     data_out.build_patches(2);
 
@@ -262,7 +265,8 @@ namespace viscofilm
   Output::write_probes(const unsigned int    step,
                        const double          time,
                        const StokesSolver &  stokes,
-                       const VolumeFraction &volume_fraction)
+                       const VolumeFraction &volume_fraction,
+                       const ElasticStress & stress)
   {
     if (!probes_file)
       return;
@@ -288,6 +292,9 @@ namespace viscofilm
     const auto phi = VectorTools::point_values<1>(probe_cache,
                                                   volume_fraction.dof_handler(),
                                                   volume_fraction.solution());
+    const auto c = VectorTools::point_values<3>(probe_cache,
+                                                stress.dof_handler(),
+                                                stress.solution());
     for (unsigned int i = 0; i < uvp.size(); ++i)
       {
         probes_file->set("step", step);
@@ -298,6 +305,9 @@ namespace viscofilm
         probes_file->set("v", uvp[i][1]);
         probes_file->set("p", uvp[i][2]);
         probes_file->set("volume_fraction", phi[i]);
+        probes_file->set("tau_xx", c[i][0] - stress.shift());
+        probes_file->set("tau_xy", c[i][1]);
+        probes_file->set("tau_yy", c[i][2] - stress.shift());
         probes_file->write_row();
       }
   }

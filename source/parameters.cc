@@ -11,6 +11,9 @@ namespace viscofilm
     BoundaryConditions::declare_parameters(prm);
     InitialConditions::declare_parameters(prm);
     StokesSolver::Parameters::declare_parameters(prm);
+    ElasticStress::Parameters::declare_parameters(prm);
+    DepartureFeet::Parameters::declare_parameters(prm);
+    VolumeFraction::Parameters::declare_parameters(prm);
     Output::Parameters::declare_parameters(prm);
     Verification::declare_parameters(prm);
   }
@@ -25,6 +28,9 @@ namespace viscofilm
     boundary_conditions.parse_parameters(prm);
     initial_conditions.parse_parameters(prm);
     stokes_solver.parse_parameters(prm);
+    stress.parse_parameters(prm);
+    departure_feet.parse_parameters(prm);
+    stabilization.parse_parameters(prm);
     output.parse_parameters(prm);
     verification.parse_parameters(prm);
 

@@ -27,7 +27,11 @@ namespace viscofilm
              parameters.stokes_solver,
              parameters.model,
              parameters.boundary_conditions)
-    , volume_fraction(triangulation)
+    , volume_fraction(triangulation,
+                      parameters.stabilization,
+                      parameters.boundary_conditions)
+    , stress(triangulation, parameters.stress, parameters.model)
+    , departure_feet(parameters.departure_feet, parameters.geometry, triangulation)
     , output(parameters.output, triangulation)
   {}
 
@@ -46,10 +50,12 @@ namespace viscofilm
     TimerOutput::Scope t(computing_timer, "setup");
     stokes.setup_dofs();
     volume_fraction.setup_dofs();
+    stress.setup_dofs(stokes.quadrature());
     output.mesh_changed();
     pcout << "Mesh: " << triangulation.n_global_active_cells() << " cells, Δx = "
           << parameters.geometry.initial_cell_size() << "; "
           << stokes.n_dofs() << " Stokes dofs, "
+          << stress.dof_handler().n_dofs() << " stress dofs, "
           << volume_fraction.dof_handler().n_dofs() << " volume fraction dofs, "
           << Utilities::MPI::n_mpi_processes(mpi_communicator) << " MPI rank(s)"
           << std::endl;
@@ -59,9 +65,17 @@ namespace viscofilm
   void
   Problem::set_initial_conditions()
   {
-    // u = 0, p = 0 are the solver's initial state; φ from the input.
+    // u = 0, p = 0 are the solver's initial state; φ from the input,
+    // softened (eq. 2.50); τ = 0.
     volume_fraction.interpolate(
       parameters.initial_conditions.volume_fraction.function());
+    {
+      TimerOutput::Scope t(computing_timer, "softening");
+      volume_fraction.soften(parameters.model.diffusion,
+                             parameters.initial_conditions.softening_steps,
+                             parameters.initial_conditions.softening_time_step);
+    }
+    stress.set_initial_conditions();
     stokes.invalidate_matrix();
   }
 
@@ -75,7 +89,10 @@ namespace viscofilm
       &volume_fraction.dof_handler(),
       &volume_fraction.solution(),
       &parameters.verification.body_force.function(),
-      {}};
+      [this](const DoFHandler<2>::active_cell_iterator &cell,
+             std::vector<SymmetricTensor<2, 2>> &       tau) {
+        stress.stress_at_quadrature_points(cell, tau);
+      }};
     {
       TimerOutput::Scope t(computing_timer, "assemble stokes");
       stokes.assemble(coefficients);
@@ -85,22 +102,76 @@ namespace viscofilm
       TimerOutput::Scope t(computing_timer, "solve stokes");
       iterations = stokes.solve();
     }
-    if (parameters.stokes_solver.verbose)
-      pcout << "   Stokes solve: " << iterations << " FGMRES iterations"
-            << std::endl;
     return iterations;
+  }
+
+
+  Problem::StepReport
+  Problem::do_time_step(const double time)
+  {
+    const double k = parameters.time_stepping.time_step;
+    StepReport   report;
+
+    // 1. Departure feet from u^n: c^n there, and u^n for the inertia term.
+    const bool viscoelastic = parameters.model.viscoelastic;
+    departure_feet.reset_statistics();
+    {
+      TimerOutput::Scope t(computing_timer, "departure feet");
+      if (viscoelastic)
+        stress.trace_back(departure_feet, stokes, k);
+      stokes.trace_back(departure_feet, k);
+    }
+
+    // 2. Picard loop: Stokes with the stress iterate, then the stress update.
+    // Without elastic stress one Stokes solve is the whole step.
+    const unsigned int max_picard =
+      viscoelastic ? parameters.time_stepping.max_picard_iterations : 1;
+    for (unsigned int l = 1; l <= max_picard; ++l)
+      {
+        const TrilinosWrappers::MPI::BlockVector previous = stokes.solution();
+        const unsigned int iterations = solve_stokes(time);
+        report.stokes_iterations +=
+          (l > 1 ? "+" : "") + std::to_string(iterations);
+        report.total_stokes_iterations += iterations;
+        report.picard_iterations = l;
+        if (!viscoelastic)
+          break;
+        {
+          TimerOutput::Scope t(computing_timer, "stress update");
+          stress.update(stokes, volume_fraction, k);
+        }
+        if (stokes.relative_change(previous) < parameters.time_stepping.picard_tolerance)
+          break;
+        report.picard_converged = (l < max_picard);
+      }
+    if (!report.picard_converged)
+      pcout << "   Warning: the Picard loop did not reach Time stepping/Picard "
+               "tolerance in "
+            << report.picard_iterations << " iterations at t = " << time << std::endl;
+
+    // 3. φ^{n+1} with u^{n+1}; the viscosity changes with it.
+    {
+      TimerOutput::Scope t(computing_timer, "volume fraction");
+      report.transport_iterations =
+        volume_fraction.advance(stokes, parameters.model.diffusion, k);
+    }
+    stokes.invalidate_matrix();
+    return report;
   }
 
 
   void
   Problem::write_statistics(const unsigned int step,
                             const double       time,
-                            const unsigned int stokes_iterations)
+                            const StepReport & report)
   {
     CsvFile &statistics = output.statistics();
     statistics.set("step", step);
     statistics.set("time", time);
-    statistics.set("stokes_iterations", stokes_iterations);
+    statistics.set("stokes_iterations", report.total_stokes_iterations);
+    statistics.set("picard_iterations", report.picard_iterations);
+    statistics.set("picard_converged", report.picard_converged);
+    statistics.set("transport_iterations", report.transport_iterations);
     statistics.set("max_velocity", stokes.max_velocity());
     statistics.set("volume_fraction_integral", volume_fraction.integral());
     const auto [phi_min, phi_max] = volume_fraction.range();
@@ -114,6 +185,13 @@ namespace viscofilm
         statistics.set("velocity_l2_error", velocity_error);
         statistics.set("pressure_l2_error", pressure_error);
       }
+    statistics.set("min_conformation_eigenvalue", stress.min_eigenvalue());
+    const DepartureFeet::Statistics &feet = departure_feet.statistics();
+    statistics.set("feet_newton_iterations", feet.max_newton_iterations);
+    statistics.set("feet_left_cell", feet.n_left_cell);
+    statistics.set("feet_left_domain", feet.n_left_domain);
+    statistics.set("feet_remote", stress.n_remote_feet());
+    statistics.set("feet_positivity_fixes", stress.n_positivity_fixes());
     statistics.write_row();
   }
 
@@ -124,9 +202,9 @@ namespace viscofilm
                           const bool         last_step)
   {
     TimerOutput::Scope t(computing_timer, "output");
-    output.write_probes(step, time, stokes, volume_fraction);
+    output.write_probes(step, time, stokes, volume_fraction, stress);
     if (output.snapshot_due(step, last_step))
-      output.write_snapshot(step, time, stokes, volume_fraction);
+      output.write_snapshot(step, time, stokes, volume_fraction, stress);
   }
 
 
@@ -141,35 +219,46 @@ namespace viscofilm
 
     const unsigned int n_steps   = parameters.time_stepping.n_steps;
     const double       time_step = parameters.time_stepping.time_step;
-    write_statistics(0, 0.0, 0);
+    write_statistics(0, 0.0, StepReport());
     output_results(0, 0.0, n_steps == 0);
 
-    const auto start = std::chrono::steady_clock::now();
+    // Progress on rank 0: every step up to 200 steps, else 100 lines.
+    const unsigned int progress_interval = std::max(1u, n_steps / 100 * (n_steps > 200));
+    const auto         start             = std::chrono::steady_clock::now();
     for (unsigned int step = 1; step <= n_steps; ++step)
       {
         const double time = step * time_step;
+        StepReport   report;
         try
           {
-            const unsigned int stokes_iterations = solve_stokes(time);
-            write_statistics(step, time, stokes_iterations);
+            report = do_time_step(time);
+            write_statistics(step, time, report);
             output_results(step, time, step == n_steps);
             stokes.advance_time();
+            stress.advance_time();
           }
         catch (const std::exception &e)
           {
             std::ostringstream where;
             where << "at time step " << step << " (t = " << time
-                  << "): " << error_message(e);
+                  << "): " << error_message(e)
+                  << ". statistics.csv and the snapshots written so far are valid.";
             throw ExcMessage(where.str());
           }
 
-        const double elapsed =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-            .count();
-        pcout << "Step " << step << "/" << n_steps << ", t = " << time
-              << ", elapsed " << std::fixed << std::setprecision(1) << elapsed
-              << " s, remaining ~" << elapsed / step * (n_steps - step) << " s"
-              << std::defaultfloat << std::setprecision(6) << std::endl;
+        if (step % progress_interval == 0 || step == n_steps)
+          {
+            const double elapsed =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                .count();
+            pcout << "Step " << step << "/" << n_steps << "  t = " << time
+                  << "  max|u| = " << stokes.max_velocity()
+                  << "  Picard " << report.picard_iterations << " (Stokes "
+                  << report.stokes_iterations << ")  " << std::fixed
+                  << std::setprecision(1) << elapsed << " s, ~"
+                  << elapsed / step * (n_steps - step) << " s to go"
+                  << std::defaultfloat << std::setprecision(6) << std::endl;
+          }
       }
     computing_timer.print_summary();
   }

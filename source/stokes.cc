@@ -5,6 +5,7 @@
 
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
 
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
@@ -137,10 +138,6 @@ namespace viscofilm
                       "Replace η(φ) in each cell by its cell mean (ASPECT's "
                       "trick against large viscosity contrasts); none uses η at "
                       "every quadrature point. See doc/performance.md.");
-    prm.declare_entry("Verbose",
-                      "true",
-                      Patterns::Bool(),
-                      "Print the iteration count of every solve.");
     prm.leave_subsection();
   }
 
@@ -158,7 +155,6 @@ namespace viscofilm
                  a == "arithmetic" ? Averaging::arithmetic :
                  a == "harmonic"   ? Averaging::harmonic :
                                      Averaging::geometric);
-    verbose = prm.get_bool("Verbose");
     prm.leave_subsection();
     check_input(tolerance > 0,
                 "Stokes solver/Tolerance must be in (0, 1), got 0");
@@ -301,7 +297,7 @@ namespace viscofilm
       }
     system_rhs = 0;
 
-    const QGauss<2> quadrature(fe.degree + 1);
+    const Quadrature<2> quadrature = this->quadrature();
     FEValues<2>     fe_values(fe,
                           quadrature,
                           update_values | update_gradients |
@@ -324,7 +320,9 @@ namespace viscofilm
     std::vector<double>                viscosity(n_q_points);
     std::vector<Tensor<1, 2>>          old_velocity(n_q_points);
     std::vector<Vector<double>>        body_force(n_q_points, Vector<double>(2));
-    std::vector<SymmetricTensor<2, 2>> phi_tau(n_q_points);
+    std::vector<SymmetricTensor<2, 2>> tau(n_q_points);
+    const bool                         use_feet = !old_velocity_at_feet.empty();
+    unsigned int                       foot     = 0;
 
     std::vector<Tensor<1, 2>>          phi_u(dofs_per_cell);
     std::vector<SymmetricTensor<2, 2>> symgrad_phi_u(dofs_per_cell);
@@ -352,12 +350,19 @@ namespace viscofilm
             viscosity[q] = model.viscosity(volume_fraction[q]);
           average_viscosity(parameters.averaging, fe_values.get_JxW_values(), viscosity);
 
-          fe_values[velocities].get_function_values(old_solution, old_velocity);
+          if (use_feet)
+            for (unsigned int q = 0; q < n_q_points; ++q)
+              old_velocity[q] = old_velocity_at_feet[foot++];
+          else
+            fe_values[velocities].get_function_values(old_solution, old_velocity);
           coefficients.body_force->vector_value_list(
             fe_values.get_quadrature_points(), body_force);
           if (coefficients.elastic_stress)
-            coefficients.elastic_stress(cell, phi_tau);
+            coefficients.elastic_stress(cell, tau);
 
+          // With the matrix current, the cell matrix is needed only where
+          // inhomogeneous boundary values enter the right-hand side.
+          const bool need_matrix = assemble_matrix || cell->at_boundary();
           cell_matrix = 0;
           cell_mass   = 0;
           cell_rhs    = 0;
@@ -374,10 +379,13 @@ namespace viscofilm
               const Tensor<1, 2> force({body_force[q][0], body_force[q][1]});
               const Tensor<1, 2> rhs_vector =
                 mass_coefficient * old_velocity[q] + force;
+              // φ τ, with φ clipped to [0, 1] as in η(φ).
+              const SymmetricTensor<2, 2> phi_tau =
+                std::clamp(volume_fraction[q], 0.0, 1.0) * tau[q];
 
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
-                  for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                  for (unsigned int j = 0; j < dofs_per_cell && need_matrix; ++j)
                     {
                       cell_matrix(i, j) +=
                         (mass_coefficient * phi_u[i] * phi_u[j] +
@@ -387,7 +395,7 @@ namespace viscofilm
                       cell_mass(i, j) += phi_p[i] * phi_p[j] / viscosity[q] * JxW;
                     }
                   cell_rhs(i) += (rhs_vector * phi_u[i] -
-                                  phi_tau[q] * symgrad_phi_u[i]) *
+                                  phi_tau * symgrad_phi_u[i]) *
                                  JxW;
                 }
             }
@@ -428,6 +436,58 @@ namespace viscofilm
         preconditioner_is_current = false;
       }
     system_rhs.compress(VectorOperation::add);
+  }
+
+
+  Quadrature<2>
+  StokesSolver::quadrature() const
+  {
+    return QGauss<2>(fe.degree + 1);
+  }
+
+
+  void
+  StokesSolver::trace_back(DepartureFeet &feet, const double time_step)
+  {
+    old_velocity_at_feet.clear();
+    if (model.reynolds_number == 0)
+      return;
+    FEValues<2> fe_values(fe, quadrature(), update_quadrature_points);
+    std::vector<Point<2>>                               points;
+    std::vector<Triangulation<2>::active_cell_iterator> cells;
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          for (const Point<2> &p : fe_values.get_quadrature_points())
+            {
+              points.push_back(p);
+              cells.push_back(cell);
+            }
+        }
+    const std::vector<Point<2>> foot =
+      feet.compute(points, cells, dofs, old_solution, time_step);
+    Utilities::MPI::RemotePointEvaluation<2> cache;
+    cache.reinit(foot, triangulation, StaticMappingQ1<2>::mapping);
+    for (const auto &value : evaluate_velocity(cache, dofs, old_solution))
+      old_velocity_at_feet.emplace_back(Tensor<1, 2>({value[0], value[1]}));
+  }
+
+
+  double
+  StokesSolver::relative_change(
+    const TrilinosWrappers::MPI::BlockVector &previous) const
+  {
+    TrilinosWrappers::MPI::BlockVector now(owned_partitioning, mpi_communicator);
+    TrilinosWrappers::MPI::BlockVector difference(owned_partitioning, mpi_communicator);
+    now        = current_solution;
+    difference = previous;
+    difference.sadd(-1.0, now);
+    double change = 0;
+    for (unsigned int b = 0; b < 2; ++b)
+      if (now.block(b).l2_norm() > 0)
+        change += difference.block(b).l2_norm() / now.block(b).l2_norm();
+    return change;
   }
 
 

@@ -17,6 +17,17 @@ namespace viscofilm
                       Patterns::Integer(0),
                       "Number of time steps to take (0: write the initial "
                       "state only).");
+    prm.declare_entry("Picard tolerance",
+                      "1e-6",
+                      Patterns::Double(0),
+                      "The Picard loop of a time step stops when the relative "
+                      "change ‖Δu‖/‖u‖ + ‖Δp‖/‖p‖ falls below this, > 0.");
+    prm.declare_entry("Maximum Picard iterations",
+                      "10",
+                      Patterns::Integer(1),
+                      "Picard iterations per time step at most; reaching the cap "
+                      "is reported (statistics.csv: picard_converged = 0) and "
+                      "the run goes on.");
     prm.leave_subsection();
   }
 
@@ -27,9 +38,13 @@ namespace viscofilm
     prm.enter_subsection("Time stepping");
     time_step = prm.get_double("Time step");
     n_steps   = prm.get_integer("Number of steps");
+    picard_tolerance      = prm.get_double("Picard tolerance");
+    max_picard_iterations = prm.get_integer("Maximum Picard iterations");
     prm.leave_subsection();
     check_input(time_step > 0,
                 "Time stepping/Time step must be > 0, got " +
                   to_text(time_step));
+    check_input(picard_tolerance > 0,
+                "Time stepping/Picard tolerance must be > 0, got 0");
   }
 } // namespace viscofilm

@@ -32,6 +32,7 @@ namespace viscofilm
       std::string      name;
       Type             type = Type::no_slip;
       ParsedExpression velocity{2};
+      double           volume_fraction = 0; // φ where the flow enters
     };
 
     BoundaryConditions();

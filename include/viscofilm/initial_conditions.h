@@ -1,11 +1,14 @@
-// Initial state: u = 0, p = 0, τ = 0 and the biofilm's volume fraction
-// (MODEL.md §4).
+// Initial state: u = 0, p = 0, τ = 0 and the biofilm's volume fraction,
+// softened by φ-scaled diffusion (MODEL.md §3-4, thesis eq. 2.50).
 #ifndef viscofilm_initial_conditions_h
 #define viscofilm_initial_conditions_h
 
 #include <deal.II/base/parameter_handler.h>
 
 #include <viscofilm/input.h>
+
+#include <map>
+#include <string>
 
 namespace viscofilm
 {
@@ -19,8 +22,15 @@ namespace viscofilm
     void
     parse_parameters(ParameterHandler &prm);
 
-    /// φ(x, y) at t = 0.
+    /// The named profiles (φ = 0.1 inside) and their expressions.
+    static const std::map<std::string, std::string> &
+    presets();
+
+    /// φ(x, y) at t = 0, before softening.
     ParsedExpression volume_fraction{1};
+
+    unsigned int softening_steps     = 0;
+    double       softening_time_step = 0.03125;
   };
 } // namespace viscofilm
 

@@ -31,6 +31,7 @@ namespace viscofilm
     double weissenberg      = 2;
     double slip_parameter   = 1;
     double diffusion        = 1e-5;
+    bool   viscoelastic     = true; // false: τ ≡ 0, a Newtonian mixture
   };
 } // namespace viscofilm
 

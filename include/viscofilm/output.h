@@ -21,6 +21,7 @@ namespace viscofilm
   using namespace dealii;
 
   class StokesSolver;
+  class ElasticStress;
   class VolumeFraction;
 
   /**
@@ -84,14 +85,16 @@ namespace viscofilm
     write_snapshot(const unsigned int    step,
                    const double          time,
                    const StokesSolver &  stokes,
-                   const VolumeFraction &volume_fraction);
+                   const VolumeFraction &volume_fraction,
+                   const ElasticStress & stress);
 
     /// Append one row per probe point to probes.csv.
     void
     write_probes(const unsigned int    step,
                  const double          time,
                  const StokesSolver &  stokes,
-                 const VolumeFraction &volume_fraction);
+                 const VolumeFraction &volume_fraction,
+                 const ElasticStress & stress);
 
     CsvFile &
     statistics();

@@ -6,13 +6,16 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <viscofilm/boundary_conditions.h>
+#include <viscofilm/departure_feet.h>
 #include <viscofilm/geometry.h>
 #include <viscofilm/initial_conditions.h>
 #include <viscofilm/model.h>
 #include <viscofilm/output.h>
 #include <viscofilm/stokes.h>
+#include <viscofilm/stress.h>
 #include <viscofilm/time_stepping.h>
 #include <viscofilm/verification.h>
+#include <viscofilm/volume_fraction.h>
 
 namespace viscofilm
 {
@@ -33,6 +36,9 @@ namespace viscofilm
     BoundaryConditions       boundary_conditions;
     InitialConditions        initial_conditions;
     StokesSolver::Parameters stokes_solver;
+    ElasticStress::Parameters stress;
+    DepartureFeet::Parameters departure_feet;
+    VolumeFraction::Parameters stabilization;
     Output::Parameters       output;
     Verification             verification;
   };

@@ -1,4 +1,5 @@
-// The simulator: owns the mesh and the fields and runs the time loop.
+// The simulator: owns the mesh and the fields and runs the coupled time loop
+// of MODEL.md §3 in the thesis' order.
 #ifndef viscofilm_problem_h
 #define viscofilm_problem_h
 
@@ -8,10 +9,14 @@
 
 #include <deal.II/distributed/tria.h>
 
+#include <viscofilm/departure_feet.h>
 #include <viscofilm/output.h>
 #include <viscofilm/parameters.h>
 #include <viscofilm/stokes.h>
+#include <viscofilm/stress.h>
 #include <viscofilm/volume_fraction.h>
+
+#include <string>
 
 namespace viscofilm
 {
@@ -28,21 +33,31 @@ namespace viscofilm
     run();
 
   private:
+    /// What one time step did, for statistics.csv and the screen.
+    struct StepReport
+    {
+      std::string  stokes_iterations; // per Picard iteration, "12+8+3"
+      unsigned int total_stokes_iterations = 0;
+      unsigned int picard_iterations       = 0;
+      bool         picard_converged        = true;
+      unsigned int transport_iterations    = 0;
+    };
+
     void
     make_grid();
     void
     setup_dofs();
     void
     set_initial_conditions();
-    /// Returns the Krylov iteration count.
+    /// One step t_n -> t_{n+1} = @p time: feet, Picard loop, transport.
+    StepReport
+    do_time_step(const double time);
     unsigned int
     solve_stokes(const double time);
     void
     output_results(const unsigned int step, const double time, const bool last_step);
     void
-    write_statistics(const unsigned int step,
-                     const double       time,
-                     const unsigned int stokes_iterations);
+    write_statistics(const unsigned int step, const double time, const StepReport &report);
 
     Parameters &            parameters;
     const ParameterHandler &prm;
@@ -53,6 +68,8 @@ namespace viscofilm
     parallel::distributed::Triangulation<2> triangulation;
     StokesSolver                            stokes;
     VolumeFraction                          volume_fraction;
+    ElasticStress                           stress;
+    DepartureFeet                           departure_feet;
     Output                                  output;
   };
 } // namespace viscofilm

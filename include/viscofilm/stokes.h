@@ -20,6 +20,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <viscofilm/boundary_conditions.h>
+#include <viscofilm/departure_feet.h>
 #include <viscofilm/model.h>
 
 #include <functional>
@@ -58,14 +59,13 @@ namespace viscofilm
       double       tolerance      = 1e-8;
       unsigned int max_iterations = 1000;
       Averaging    averaging      = Averaging::harmonic;
-      bool         verbose        = true;
     };
 
-    /// φτ at the quadrature points of a cell: the elastic stress term
+    /// τ at the quadrature points of a cell, for the elastic stress term
     /// −(φτ, ∇v) on the right-hand side. An empty hook means τ = 0.
     using ElasticStress = std::function<void(
       const DoFHandler<2>::active_cell_iterator &cell,
-      std::vector<SymmetricTensor<2, 2>> &       phi_tau)>;
+      std::vector<SymmetricTensor<2, 2>> &       tau)>;
 
     /// What the momentum equation needs besides the unknowns.
     struct Coefficients
@@ -91,6 +91,20 @@ namespace viscofilm
     /// are rebuilt at the next assemble()/solve().
     void
     invalidate_matrix();
+
+    /// The quadrature of the assembly (τ is asked for at its points).
+    Quadrature<2>
+    quadrature() const;
+
+    /// u^n at the departure feet of the quadrature points, for the term
+    /// (Res/k)(u^n(y), v) of MODEL.md §3 step 2a. Skipped when Res = 0.
+    void
+    trace_back(DepartureFeet &feet, const double time_step);
+
+    /// Relative change (‖Δu‖/‖u‖ + ‖Δp‖/‖p‖) from @p previous to the
+    /// current solution (discrete l2 norms), the Picard criterion.
+    double
+    relative_change(const TrilinosWrappers::MPI::BlockVector &previous) const;
 
     /// Assemble the right-hand side (and the matrix if invalidated).
     void
@@ -153,6 +167,7 @@ namespace viscofilm
     TrilinosWrappers::MPI::BlockVector system_rhs;
     TrilinosWrappers::MPI::BlockVector current_solution; // ghosted
     TrilinosWrappers::MPI::BlockVector old_solution;     // ghosted, u^n
+    std::vector<Tensor<1, 2>>          old_velocity_at_feet; // per owned cell and q
 
     bool matrix_is_current = false;
     bool preconditioner_is_current = false;

@@ -18,6 +18,10 @@ namespace viscofilm
 
     double       time_step = 0.003125;
     unsigned int n_steps   = 200;
+
+    /// The Picard loop between Stokes and the stress (MODEL.md §3 step 2c).
+    double       picard_tolerance      = 1e-6;
+    unsigned int max_picard_iterations = 10;
   };
 } // namespace viscofilm
 

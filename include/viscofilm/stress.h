@@ -1,0 +1,153 @@
+// The elastic stress: conformation tensor c = τ + (ηp/(a Wi)) I on its own
+// DoFHandler, updated node by node by the symmetric matrix Riccati scheme
+// along departure feet (MODEL.md §2-3, thesis eq. 2.39-2.40, 3.39-3.44).
+#ifndef viscofilm_stress_h
+#define viscofilm_stress_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/quadrature.h>
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+
+#include <viscofilm/departure_feet.h>
+#include <viscofilm/model.h>
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace viscofilm
+{
+  using namespace dealii;
+
+  class StokesSolver;
+  class VolumeFraction;
+
+  class ElasticStress
+  {
+  public:
+    struct Parameters
+    {
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+
+      /// FE_Q(2)^3 (the thesis; nodes use the mean ∇u of their cells) or
+      /// FE_DGQ(2)^3 (every node uses its own cell's ∇u).
+      bool discontinuous = false;
+      /// Evaluate c at a foot on the Q1 sub-cells of the Q2 nodes where the
+      /// Q2 interpolant is not positive definite.
+      bool positivity_safe_feet = true;
+    };
+
+    ElasticStress(const parallel::distributed::Triangulation<2> &triangulation,
+                  const Parameters &                             parameters,
+                  const Model &                                  model);
+
+    /// Distribute dofs and list the stress nodes; @p quadrature is the one
+    /// the Stokes assembly asks τ at.
+    void
+    setup_dofs(const Quadrature<2> &quadrature);
+
+    /// τ = 0, i.e. c = (ηp/(a Wi)) I.
+    void
+    set_initial_conditions();
+
+    /// MODEL.md §3 step 1: the nodes' departure feet from u^n and c^n there.
+    void
+    trace_back(DepartureFeet &      feet,
+               const StokesSolver & stokes,
+               const double         time_step);
+
+    /// MODEL.md §3 step 2b: c^{n+1} at every node from the current Stokes
+    /// iterate, φ^n and c^n at the feet (closed form, eq. 3.40-3.44).
+    void
+    update(const StokesSolver &stokes, const VolumeFraction &volume_fraction, const double time_step);
+
+    /// τ at the quadrature points of @p cell (the Stokes right-hand side).
+    void
+    stress_at_quadrature_points(const DoFHandler<2>::active_cell_iterator &cell,
+                                std::vector<SymmetricTensor<2, 2>> &tau) const;
+
+    /// c^n := c^{n+1}, before the next time step.
+    void
+    advance_time();
+
+    /// Smallest eigenvalue of c over all nodes (positive definiteness).
+    double
+    min_eigenvalue() const;
+
+    /// Nodes whose foot value needed the positivity-safe evaluation.
+    unsigned int
+    n_positivity_fixes() const;
+
+    /// Feet evaluated by another rank (summed over ranks) in the last
+    /// trace_back().
+    unsigned int
+    n_remote_feet() const;
+
+    /// The shift ηp/(a Wi): τ = c − shift I.
+    double
+    shift() const;
+
+    /// Add tau_xx, tau_xy, tau_yy to @p data_out.
+    void
+    add_output(DataOut<2> &data_out) const;
+
+    const DoFHandler<2> &
+    dof_handler() const;
+
+    /// c with ghost values.
+    const TrilinosWrappers::MPI::Vector &
+    solution() const;
+
+  private:
+    struct Node
+    {
+      Point<2>                                position;
+      Triangulation<2>::active_cell_iterator  cell;
+      std::array<types::global_dof_index, 3>  dofs; // c_xx, c_xy, c_yy
+      SymmetricTensor<2, 2>                   foot_conformation;
+    };
+
+    /// ∇u and φ at every node, ∇u averaged over the node's cells.
+    void
+    nodal_fields(const StokesSolver &           stokes,
+                 const VolumeFraction &         volume_fraction,
+                 std::vector<Tensor<2, 2>> &    velocity_gradient,
+                 std::vector<double> &          phi) const;
+
+    const parallel::distributed::Triangulation<2> &triangulation;
+    const Parameters &                             parameters;
+    const Model &                                  model;
+
+    const FESystem<2>             fe;
+    DoFHandler<2>                 dofs;
+    IndexSet                      locally_relevant_dofs;
+    std::vector<Node>             nodes;
+    std::vector<unsigned int>     node_of_owned_dof; // component-0 dofs only
+    std::array<std::array<unsigned int, 3>, 3> lexicographic_node; // [ix][iy]
+
+    TrilinosWrappers::MPI::Vector current; // ghosted c^{n+1}
+    TrilinosWrappers::MPI::Vector old;     // ghosted c^n
+
+    std::unique_ptr<FEValues<2>>               quadrature_values;
+    std::unique_ptr<DataPostprocessor<2>>      tau_postprocessor;
+    unsigned int                               positivity_fixes = 0;
+    unsigned int                               remote_feet      = 0;
+  };
+} // namespace viscofilm
+
+#endif
