@@ -36,6 +36,11 @@ namespace viscofilm
                               "thesis: 0.1 inside the biofilm, 0 in water), or one "
                               "of the named profiles " + names +
                                 " (doc/parameters.md).");
+    ParsedExpression::declare(prm,
+                              "Stress",
+                              "0; 0; 0",
+                              "Elastic stress \"τ_xx; τ_xy; τ_yy\" at t = 0 (the "
+                              "thesis: 0).");
     declare_function_constants(prm);
     prm.declare_entry("Softening steps",
                       "0",
@@ -59,6 +64,9 @@ namespace viscofilm
     volume_fraction.parse(preset != presets().end() ? preset->second : text,
                           prm.get("Function constants"),
                           "Initial conditions/Volume fraction");
+    stress.parse(prm.get("Stress"),
+                 prm.get("Function constants"),
+                 "Initial conditions/Stress");
     softening_steps     = prm.get_integer("Softening steps");
     softening_time_step = prm.get_double("Softening time step");
     prm.leave_subsection();

@@ -75,7 +75,8 @@ namespace viscofilm
                              parameters.initial_conditions.softening_steps,
                              parameters.initial_conditions.softening_time_step);
     }
-    stress.set_initial_conditions();
+    parameters.initial_conditions.stress.function().set_time(0);
+    stress.set_initial_conditions(parameters.initial_conditions.stress.function());
     stokes.invalidate_matrix();
   }
 
@@ -140,7 +141,10 @@ namespace viscofilm
           TimerOutput::Scope t(computing_timer, "stress update");
           stress.update(stokes, volume_fraction, k);
         }
-        if (stokes.relative_change(previous) < parameters.time_stepping.picard_tolerance)
+        // The first iterate is compared with u^n: iterate at least twice so
+        // that the updated stress has acted on the flow once.
+        if (l > 1 &&
+            stokes.relative_change(previous) < parameters.time_stepping.picard_tolerance)
           break;
         report.picard_converged = (l < max_picard);
       }
@@ -185,6 +189,13 @@ namespace viscofilm
         statistics.set("velocity_l2_error", velocity_error);
         statistics.set("pressure_l2_error", pressure_error);
       }
+    if (parameters.verification.exact_stress)
+      statistics.set("stress_l2_error",
+                     parameters.verification.stress_l2_error(stress, time));
+    if (parameters.verification.exact_volume_fraction)
+      statistics.set("volume_fraction_l2_error",
+                     parameters.verification.volume_fraction_l2_error(volume_fraction,
+                                                                      time));
     statistics.set("min_conformation_eigenvalue", stress.min_eigenvalue());
     const DepartureFeet::Statistics &feet = departure_feet.statistics();
     statistics.set("feet_newton_iterations", feet.max_newton_iterations);

@@ -483,11 +483,12 @@ namespace viscofilm
     now        = current_solution;
     difference = previous;
     difference.sadd(-1.0, now);
-    double change = 0;
-    for (unsigned int b = 0; b < 2; ++b)
-      if (now.block(b).l2_norm() > 0)
-        change += difference.block(b).l2_norm() / now.block(b).l2_norm();
-    return change;
+    // One relative measure for both blocks, so that a pressure that is zero
+    // up to round-off (as in homogeneous flows) cannot stall the loop.
+    const double size = now.block(0).l2_norm() + now.block(1).l2_norm();
+    const double change =
+      difference.block(0).l2_norm() + difference.block(1).l2_norm();
+    return size > 0 ? change / size : change;
   }
 
 

@@ -84,6 +84,15 @@ namespace viscofilm
                       "positive definite, use the bilinear interpolant on the "
                       "Q1 sub-cell of the Q2 nodes instead (a convex "
                       "combination of nodal values, so positive definite).");
+    prm.declare_entry("Deformation gradient",
+                      "implicit Euler",
+                      Patterns::Selection("implicit Euler|Cayley"),
+                      "How the step's deformation E in c = E c(foot) Eᵀ is "
+                      "approximated. implicit Euler: E = (I − kΦ)^{-1}, the "
+                      "thesis (eq. 3.42), first order; it shrinks a rotating "
+                      "stress by 1/(1 + (ωk)²) per step. Cayley: E = (I − kΦ/2)^{-1}"
+                      "(I + kΦ/2), second order and exact in rotation. Both keep "
+                      "c symmetric and positive definite.");
     prm.leave_subsection();
   }
 
@@ -94,6 +103,7 @@ namespace viscofilm
     prm.enter_subsection("Stress");
     discontinuous        = (prm.get("Element") == "discontinuous");
     positivity_safe_feet = prm.get_bool("Positivity safe feet");
+    cayley               = (prm.get("Deformation gradient") == "Cayley");
     prm.leave_subsection();
   }
 
@@ -167,15 +177,17 @@ namespace viscofilm
 
 
   void
-  ElasticStress::set_initial_conditions()
+  ElasticStress::set_initial_conditions(const Function<2> &initial_stress)
   {
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
                                               triangulation.get_communicator());
+    Vector<double> tau(3);
     for (const Node &node : nodes)
       {
-        distributed[node.dofs[0]] = shift();
-        distributed[node.dofs[1]] = 0;
-        distributed[node.dofs[2]] = shift();
+        initial_stress.vector_value(node.position, tau);
+        distributed[node.dofs[0]] = tau[0] + shift();
+        distributed[node.dofs[1]] = tau[1];
+        distributed[node.dofs[2]] = tau[2] + shift();
       }
     distributed.compress(VectorOperation::insert);
     current = distributed;
@@ -325,10 +337,14 @@ namespace viscofilm
                                               triangulation.get_communicator());
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
-        // Φ = (a+1)/2 ∇u + (a−1)/2 ∇uᵀ; E = (I − kΦ)^{-1} (eq. 3.41-3.42).
+        // Φ = (a+1)/2 ∇u + (a−1)/2 ∇uᵀ; E = (I − kΦ)^{-1} (eq. 3.41-3.42)
+        // or its Cayley form.
         const Tensor<2, 2> &L   = velocity_gradient[i];
         const Tensor<2, 2>  Phi = 0.5 * (a + 1) * L + 0.5 * (a - 1) * transpose(L);
-        const Tensor<2, 2>  E   = invert(identity - k * Phi);
+        const Tensor<2, 2>  E =
+          parameters.cayley ?
+            invert(identity - 0.5 * k * Phi) * (identity + 0.5 * k * Phi) :
+            invert(identity - k * Phi);
         // Q2 interpolation of a step overshoots below 0: clip φ as in η(φ).
         const double        f   = std::clamp(phi[i], 0.0, 1.0);
         const Tensor<2, 2>  c_foot(nodes[i].foot_conformation);

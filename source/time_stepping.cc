@@ -21,7 +21,7 @@ namespace viscofilm
                       "1e-6",
                       Patterns::Double(0),
                       "The Picard loop of a time step stops when the relative "
-                      "change ‖Δu‖/‖u‖ + ‖Δp‖/‖p‖ falls below this, > 0.");
+                      "change (‖Δu‖ + ‖Δp‖)/(‖u‖ + ‖p‖) falls below this, > 0.");
     prm.declare_entry("Maximum Picard iterations",
                       "10",
                       Patterns::Integer(1),

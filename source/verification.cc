@@ -3,7 +3,9 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <viscofilm/stokes.h>
+#include <viscofilm/stress.h>
 #include <viscofilm/verification.h>
+#include <viscofilm/volume_fraction.h>
 
 #include <cmath>
 
@@ -25,6 +27,16 @@ namespace viscofilm
                       "in x, y, t: its L2 errors are written to statistics.csv "
                       "(the pressure error modulo a constant when no boundary "
                       "is 'outflow').");
+    prm.declare_entry("Exact stress",
+                      "",
+                      Patterns::Anything(),
+                      "Empty, or the exact \"τ_xx; τ_xy; τ_yy\" in x, y, t: "
+                      "statistics.csv gets stress_l2_error.");
+    prm.declare_entry("Exact volume fraction",
+                      "",
+                      Patterns::Anything(),
+                      "Empty, or the exact φ in x, y, t: statistics.csv gets "
+                      "volume_fraction_l2_error.");
     declare_function_constants(prm);
     prm.leave_subsection();
   }
@@ -38,14 +50,19 @@ namespace viscofilm
     body_force.parse(prm.get("Body force"),
                      constants,
                      "Verification/Body force");
-    exact_solution.reset();
-    if (!prm.get("Exact solution").empty())
-      {
-        exact_solution.emplace(3);
-        exact_solution->parse(prm.get("Exact solution"),
-                              constants,
-                              "Verification/Exact solution");
-      }
+    const auto optional_expression = [&](std::optional<ParsedExpression> &target,
+                                         const std::string &name,
+                                         const unsigned int n_components) {
+      target.reset();
+      if (!prm.get(name).empty())
+        {
+          target.emplace(n_components);
+          target->parse(prm.get(name), constants, "Verification/" + name);
+        }
+    };
+    optional_expression(exact_solution, "Exact solution", 3);
+    optional_expression(exact_stress, "Exact stress", 3);
+    optional_expression(exact_volume_fraction, "Exact volume fraction", 1);
     prm.leave_subsection();
   }
 
@@ -91,5 +108,64 @@ namespace viscofilm
     const double pressure_error_squared =
       sums[1] - (pressure_up_to_constant ? sums[2] * sums[2] / sums[3] : 0.0);
     return {std::sqrt(sums[0]), std::sqrt(std::max(pressure_error_squared, 0.0))};
+  }
+
+  namespace
+  {
+    /// ‖u_h − (f + offset)‖_L2 over all components of a field.
+    double
+    field_l2_error(const DoFHandler<2> &                dof_handler,
+                   const TrilinosWrappers::MPI::Vector &solution,
+                   FunctionParser<2> &                  exact,
+                   const double                         time,
+                   const std::vector<double> &          offset)
+    {
+      exact.set_time(time);
+      const unsigned int n = offset.size();
+      const QGauss<2>    quadrature(dof_handler.get_fe().degree + 2);
+      FEValues<2>        fe_values(dof_handler.get_fe(),
+                            quadrature,
+                            update_values | update_quadrature_points |
+                              update_JxW_values);
+      std::vector<Vector<double>> numerical(quadrature.size(), Vector<double>(n));
+      std::vector<Vector<double>> reference(quadrature.size(), Vector<double>(n));
+      double                      sum = 0;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            fe_values.get_function_values(solution, numerical);
+            exact.vector_value_list(fe_values.get_quadrature_points(), reference);
+            for (unsigned int q = 0; q < quadrature.size(); ++q)
+              for (unsigned int c = 0; c < n; ++c)
+                sum += std::pow(numerical[q][c] - reference[q][c] - offset[c], 2) *
+                       fe_values.JxW(q);
+          }
+      return std::sqrt(Utilities::MPI::sum(sum, dof_handler.get_communicator()));
+    }
+  } // namespace
+
+
+  double
+  Verification::stress_l2_error(const ElasticStress &stress, const double time) const
+  {
+    // The field is c = τ + shift I.
+    return field_l2_error(stress.dof_handler(),
+                          stress.solution(),
+                          exact_stress->function(),
+                          time,
+                          {stress.shift(), 0.0, stress.shift()});
+  }
+
+
+  double
+  Verification::volume_fraction_l2_error(const VolumeFraction &volume_fraction,
+                                         const double          time) const
+  {
+    return field_l2_error(volume_fraction.dof_handler(),
+                          volume_fraction.solution(),
+                          exact_volume_fraction->function(),
+                          time,
+                          {0.0});
   }
 } // namespace viscofilm

@@ -4,14 +4,20 @@
 Modes
   run          run FILE.prm; extract the --compare columns of the CSV files the
                run wrote and numdiff them against --reference.
-  convergence  run FILE.prm at each of --refinements; tabulate the errors in
-               the last row of statistics.csv and the observed rates, check the
-               rates against --min-rates, and numdiff the table.
+  convergence  run FILE.prm once per value of --vary "Name=v1,v2,..." (several
+               --vary are zipped; each halves the error scale, e.g. the mesh
+               size or the time step); tabulate the errors in the last row of
+               statistics.csv and the observed rates, check the rates against
+               --min-rates, and numdiff the table.
   error        run FILE.prm (or the --args command line), expect a non-zero
                exit status, the message in --reference on stderr, and no
                output directory.
   hdf5         run FILE.prm and list the datasets of every snapshot named in
                solution.xdmf (needs h5py), numdiff the listing.
+
+In modes run and convergence, --bound "file.csv:column<value" (or >) must hold
+in every row of the run(s): a check against a stated limit, whatever the
+reference says.
 
 Set VISCOFILM_BLESS=1 to write the reference instead of comparing (only after
 checking the output against the analytic answer by hand).
@@ -99,47 +105,70 @@ def compare(opts, text, workdir):
     print("output matches %s (%s)" % (opts.reference, opts.numdiff))
 
 
+def check_bounds(opts, directory):
+    for bound in opts.bound:
+        match = re.fullmatch(r"(.+):(\w+)([<>])(.+)", bound)
+        if not match:
+            fail("bad --bound " + bound)
+        filename, column, relation, limit = match.groups()
+        for row in read_csv(os.path.join(directory, filename)):
+            value = float(row[column])
+            if not (value < float(limit) if relation == "<" else value > float(limit)):
+                fail("%s: %s = %s at step %s violates %s %s %s"
+                     % (filename, column, row[column], row.get("step", "?"),
+                        column, relation, limit))
+        print("bound holds: " + bound)
+
+
 def mode_run(opts, workdir):
     prm = shutil.copy(opts.prm, workdir)
     result = run_viscofilm(opts, [os.path.basename(prm)], workdir)
     if result.returncode != 0:
         fail("viscofilm exited with %d:\n%s" % (result.returncode, result.stderr))
-    compare(opts, extract_columns(output_directory(workdir, prm), opts.compare),
-            workdir)
+    directory = output_directory(workdir, prm)
+    check_bounds(opts, directory)
+    compare(opts, extract_columns(directory, opts.compare), workdir)
 
 
 def mode_convergence(opts, workdir):
     with open(opts.prm) as f:
         template = f.read()
-    levels = [int(r) for r in opts.refinements.split(",")]
+    varied = [(name, values.split(",")) for name, values in
+              (item.split("=", 1) for item in opts.vary)]
+    levels = list(zip(*[values for _, values in varied]))
     min_rates = dict(item.split("=") for item in opts.min_rates.split(","))
     errors = {name: [] for name in min_rates}
-    for level in levels:
-        text = re.sub(r"(set\s+Initial global refinement\s*=\s*)\d+",
-                      r"\g<1>%d" % level, template)
-        prm = os.path.join(workdir, "refinement-%d.prm" % level)
+    for run, level in enumerate(levels):
+        text = template
+        for (name, _), value in zip(varied, level):
+            pattern = r"(set\s+" + re.escape(name) + r"\s*=\s*)[^#\n]*"
+            if not re.search(pattern, text):
+                fail("%s does not set %s" % (opts.prm, name))
+            text = re.sub(pattern, lambda m: m.group(1) + value, text)
+        prm = os.path.join(workdir, "run-%d.prm" % run)
         with open(prm, "w") as f:
             f.write(text)
         result = run_viscofilm(opts, [os.path.basename(prm)], workdir)
         if result.returncode != 0:
-            fail("viscofilm exited with %d at refinement %d:\n%s"
-                 % (result.returncode, level, result.stderr))
+            fail("viscofilm exited with %d for %s:\n%s"
+                 % (result.returncode, ", ".join(level), result.stderr))
+        check_bounds(opts, output_directory(workdir, prm))
         last = read_csv(os.path.join(output_directory(workdir, prm),
                                      "statistics.csv"))[-1]
         for name in errors:
             errors[name].append(float(last[name]))
 
-    lines = ["refinement," + ",".join("%s,rate" % n for n in errors)]
+    lines = [varied[0][0].replace(" ", "_") + "," +
+             ",".join("%s,rate" % n for n in errors)]
     for i, level in enumerate(levels):
-        row = [str(level)]
+        row = [level[0]]
         for name, values in errors.items():
             rate = (math.log2(values[i - 1] / values[i]) if i > 0 else float("nan"))
             row += ["%.3e" % values[i], "%.2f" % rate if i > 0 else "-"]
             if i > 0 and rate < float(min_rates[name]):
                 print("\n".join(lines + [",".join(row)]))
-                fail("%s converges at rate %.2f between refinements %d and %d, "
-                     "expected >= %s" % (name, rate, levels[i - 1], level,
-                                         min_rates[name]))
+                fail("%s converges at rate %.2f between %s and %s, expected >= %s"
+                     % (name, rate, levels[i - 1][0], level[0], min_rates[name]))
         lines.append(",".join(row))
     table = "\n".join(lines) + "\n"
     print(table)
@@ -207,7 +236,8 @@ def main():
     parser.add_argument("--reference", required=True)
     parser.add_argument("--compare", action="append", default=[])
     parser.add_argument("--numdiff", default="-a 0 -r 0")
-    parser.add_argument("--refinements", default="2,3,4")
+    parser.add_argument("--vary", action="append", default=[])
+    parser.add_argument("--bound", action="append", default=[])
     parser.add_argument("--min-rates", default="")
     parser.add_argument("--timeout", type=float, default=600)
     opts = parser.parse_args()

@@ -29,6 +29,9 @@ namespace viscofilm
     /// φ(x, y) at t = 0, before softening.
     ParsedExpression volume_fraction{1};
 
+    /// τ = (τ_xx, τ_xy, τ_yy)(x, y) at t = 0 (the thesis: 0).
+    ParsedExpression stress{3};
+
     unsigned int softening_steps     = 0;
     double       softening_time_step = 0.03125;
   };

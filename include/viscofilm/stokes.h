@@ -101,7 +101,7 @@ namespace viscofilm
     void
     trace_back(DepartureFeet &feet, const double time_step);
 
-    /// Relative change (‖Δu‖/‖u‖ + ‖Δp‖/‖p‖) from @p previous to the
+    /// Relative change (‖Δu‖ + ‖Δp‖)/(‖u‖ + ‖p‖) from @p previous to the
     /// current solution (discrete l2 norms), the Picard criterion.
     double
     relative_change(const TrilinosWrappers::MPI::BlockVector &previous) const;

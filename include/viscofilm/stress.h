@@ -50,6 +50,10 @@ namespace viscofilm
       /// Evaluate c at a foot on the Q1 sub-cells of the Q2 nodes where the
       /// Q2 interpolant is not positive definite.
       bool positivity_safe_feet = true;
+      /// E = (I − kΦ)^{-1} (the thesis, eq. 3.42) or the Cayley transform
+      /// (I − kΦ/2)^{-1}(I + kΦ/2): second order, and exactly orthogonal in a
+      /// rotation, so a co-rotating stress keeps its size.
+      bool cayley = false;
     };
 
     ElasticStress(const parallel::distributed::Triangulation<2> &triangulation,
@@ -61,9 +65,9 @@ namespace viscofilm
     void
     setup_dofs(const Quadrature<2> &quadrature);
 
-    /// τ = 0, i.e. c = (ηp/(a Wi)) I.
+    /// c = τ0 + (ηp/(a Wi)) I at the nodes (τ0 = 0 in the thesis).
     void
-    set_initial_conditions();
+    set_initial_conditions(const Function<2> &initial_stress);
 
     /// MODEL.md §3 step 1: the nodes' departure feet from u^n and c^n there.
     void

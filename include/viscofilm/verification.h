@@ -16,6 +16,8 @@ namespace viscofilm
   using namespace dealii;
 
   class StokesSolver;
+  class ElasticStress;
+  class VolumeFraction;
 
   class Verification
   {
@@ -36,9 +38,24 @@ namespace viscofilm
               const double              time,
               const bool                pressure_up_to_constant) const;
 
+    /// L2 error of τ against the exact stress at @p time.
+    double
+    stress_l2_error(const ElasticStress &stress, const double time) const;
+
+    /// L2 error of φ against the exact volume fraction at @p time.
+    double
+    volume_fraction_l2_error(const VolumeFraction &volume_fraction,
+                             const double          time) const;
+
     /// (u, v, p) when an exact solution is given: statistics.csv then gets
     /// velocity_l2_error and pressure_l2_error.
     std::optional<ParsedExpression> exact_solution;
+
+    /// (τ_xx, τ_xy, τ_yy), if given: statistics.csv gets stress_l2_error.
+    std::optional<ParsedExpression> exact_stress;
+
+    /// φ, if given: statistics.csv gets volume_fraction_l2_error.
+    std::optional<ParsedExpression> exact_volume_fraction;
   };
 } // namespace viscofilm
 
