@@ -6,8 +6,11 @@
 #include <viscofilm/parameters.h>
 #include <viscofilm/problem.h>
 
+#include <cctype>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -20,6 +23,41 @@ namespace
     "                                       documentation and default\n"
     "       viscofilm --help                print this message\n"
     "Run in parallel with: mpirun -np N viscofilm FILE.prm\n";
+
+  /// The text of @p filename with "include FILE" resolved relative to the
+  /// including file's directory (deal.II resolves it relative to the working
+  /// directory), so that prm/ variants can include prm/default.prm.
+  std::string
+  read_with_includes_resolved(const std::string &filename)
+  {
+    std::ifstream     file(filename);
+    std::string       line, text;
+    const auto        directory = std::filesystem::path(filename).parent_path();
+    const std::string keyword   = "include";
+    while (std::getline(file, line))
+      {
+        const auto start = line.find_first_not_of(" \t");
+        if (start != std::string::npos && line.compare(start, keyword.size(), keyword) == 0 &&
+            line.size() > start + keyword.size() &&
+            std::isspace(line[start + keyword.size()]))
+          {
+            const std::filesystem::path included(
+              dealii::Utilities::trim(line.substr(start + keyword.size())));
+            viscofilm::check_input(
+              std::filesystem::is_regular_file(directory / included) ||
+                std::filesystem::is_regular_file(included),
+              "parameter file \"" + filename + "\" includes \"" +
+                included.string() + "\", which does not exist");
+            line = keyword + " " +
+                   (std::filesystem::is_regular_file(directory / included) ?
+                      (directory / included).string() :
+                      included.string());
+          }
+        text += line + "\n";
+      }
+    return text;
+  }
+
 
   /// Read @p filename into @p prm and @p parameters, or throw with a message
   /// that names the file, the line and the parameter.
@@ -34,7 +72,8 @@ namespace
                              filename.substr(filename.size() - 4) == ".prm",
                            "parameter file \"" + filename +
                              "\" must have the extension .prm");
-    prm.parse_input(filename);
+    std::istringstream text(read_with_includes_resolved(filename));
+    prm.parse_input(text, filename);
     parameters.parse_parameters(prm);
   }
 } // namespace
