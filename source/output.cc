@@ -2,8 +2,6 @@
 
 #include <deal.II/fe/mapping_q1.h>
 
-#include <deal.II/numerics/data_out.h>
-#include <deal.II/numerics/data_postprocessor.h>
 #include <deal.II/numerics/vector_tools_evaluate.h>
 
 #include <viscofilm/input.h>
@@ -18,43 +16,6 @@
 
 namespace viscofilm
 {
-  namespace
-  {
-    /// ∇·u, vorticity ∂v/∂x − ∂u/∂y and |u·∇u| from the Stokes solution.
-    class FlowPostprocessor : public DataPostprocessor<2>
-    {
-    public:
-      void
-      evaluate_vector_field(const DataPostprocessorInputs::Vector<2> &inputs,
-                            std::vector<Vector<double>> &computed) const override
-      {
-        for (unsigned int q = 0; q < inputs.solution_values.size(); ++q)
-          {
-            const auto &   grad = inputs.solution_gradients[q];
-            const Tensor<1, 2> u({inputs.solution_values[q][0],
-                                  inputs.solution_values[q][1]});
-            Tensor<1, 2>   convection;
-            for (unsigned int i = 0; i < 2; ++i)
-              convection[i] = u * grad[i];
-            computed[q][0] = grad[0][0] + grad[1][1];
-            computed[q][1] = grad[1][0] - grad[0][1];
-            computed[q][2] = convection.norm();
-          }
-      }
-
-      std::vector<std::string>
-      get_names() const override
-      {
-        return {"divergence", "vorticity", "inertia"};
-      }
-
-      UpdateFlags
-      get_needed_update_flags() const override
-      {
-        return update_values | update_gradients;
-      }
-    };
-  } // namespace
 
 
   CsvFile::CsvFile(const std::string &filename, const MPI_Comm mpi_communicator)
@@ -197,32 +158,13 @@ namespace viscofilm
 
 
   void
-  Output::write_snapshot(const unsigned int    step,
-                         const double          time,
-                         const StokesSolver &  stokes,
-                         const VolumeFraction &volume_fraction,
-                         const ElasticStress & stress)
+  Output::write_snapshot(const unsigned int                             step,
+                         const double                                   time,
+                         const std::function<void(DataOut<2> &)> &add_fields)
   {
     DataOut<2> data_out;
     data_out.attach_triangulation(triangulation);
-
-    const std::vector<std::string> names = {"velocity", "velocity", "pressure"};
-    const std::vector<DataComponentInterpretation::DataComponentInterpretation>
-      interpretation = {DataComponentInterpretation::component_is_part_of_vector,
-                        DataComponentInterpretation::component_is_part_of_vector,
-                        DataComponentInterpretation::component_is_scalar};
-    data_out.add_data_vector(stokes.dof_handler(),
-                             stokes.solution(),
-                             names,
-                             interpretation);
-    const FlowPostprocessor flow_postprocessor;
-    data_out.add_data_vector(stokes.dof_handler(),
-                             stokes.solution(),
-                             flow_postprocessor);
-    data_out.add_data_vector(volume_fraction.dof_handler(),
-                             volume_fraction.solution(),
-                             "volume_fraction");
-    stress.add_output(data_out);
+    add_fields(data_out);
     // Subdivide each cell once per polynomial degree: the Q2 nodes are kept.
     data_out.build_patches(2);
 

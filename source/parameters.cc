@@ -14,6 +14,7 @@ namespace viscofilm
     ElasticStress::Parameters::declare_parameters(prm);
     DepartureFeet::Parameters::declare_parameters(prm);
     VolumeFraction::Parameters::declare_parameters(prm);
+    BiofilmLoads::Parameters::declare_parameters(prm);
     Output::Parameters::declare_parameters(prm);
     Verification::declare_parameters(prm);
   }
@@ -31,6 +32,7 @@ namespace viscofilm
     stress.parse_parameters(prm);
     departure_feet.parse_parameters(prm);
     stabilization.parse_parameters(prm);
+    detachment.parse_parameters(prm);
     output.parse_parameters(prm);
     verification.parse_parameters(prm);
 

@@ -32,6 +32,11 @@ namespace viscofilm
                       parameters.boundary_conditions)
     , stress(triangulation, parameters.stress, parameters.model)
     , departure_feet(parameters.departure_feet, parameters.geometry, triangulation)
+    , loads(parameters.detachment,
+            parameters.model,
+            stokes,
+            volume_fraction,
+            stress)
     , output(parameters.output, triangulation)
   {}
 
@@ -196,6 +201,7 @@ namespace viscofilm
       statistics.set("volume_fraction_l2_error",
                      parameters.verification.volume_fraction_l2_error(volume_fraction,
                                                                       time));
+    loads.add_statistics(statistics);
     statistics.set("min_conformation_eigenvalue", stress.min_eigenvalue());
     const DepartureFeet::Statistics &feet = departure_feet.statistics();
     statistics.set("feet_newton_iterations", feet.max_newton_iterations);
@@ -215,7 +221,12 @@ namespace viscofilm
     TimerOutput::Scope t(computing_timer, "output");
     output.write_probes(step, time, stokes, volume_fraction, stress);
     if (output.snapshot_due(step, last_step))
-      output.write_snapshot(step, time, stokes, volume_fraction, stress);
+      output.write_snapshot(step, time, [this](DataOut<2> &data_out) {
+        stokes.add_output(data_out);
+        volume_fraction.add_output(data_out);
+        stress.add_output(data_out);
+        loads.add_output(data_out);
+      });
   }
 
 

@@ -26,6 +26,42 @@ namespace viscofilm
 {
   namespace
   {
+    /// ∇·u, vorticity ∂v/∂x − ∂u/∂y and |u·∇u| from the Stokes solution.
+    class FlowPostprocessor : public DataPostprocessor<2>
+    {
+    public:
+      void
+      evaluate_vector_field(const DataPostprocessorInputs::Vector<2> &inputs,
+                            std::vector<Vector<double>> &computed) const override
+      {
+        for (unsigned int q = 0; q < inputs.solution_values.size(); ++q)
+          {
+            const auto &   grad = inputs.solution_gradients[q];
+            const Tensor<1, 2> u({inputs.solution_values[q][0],
+                                  inputs.solution_values[q][1]});
+            Tensor<1, 2>   convection;
+            for (unsigned int i = 0; i < 2; ++i)
+              convection[i] = u * grad[i];
+            computed[q][0] = grad[0][0] + grad[1][1];
+            computed[q][1] = grad[1][0] - grad[0][1];
+            computed[q][2] = convection.norm();
+          }
+      }
+
+      std::vector<std::string>
+      get_names() const override
+      {
+        return {"divergence", "vorticity", "inertia"};
+      }
+
+      UpdateFlags
+      get_needed_update_flags() const override
+      {
+        return update_values | update_gradients;
+      }
+    };
+
+
     /**
      * Block upper-triangular preconditioner for [A B^T; B 0] (step-55's
      * approach): the Schur complement B A^{-1} B^T is replaced by the
@@ -173,6 +209,7 @@ namespace viscofilm
     , mpi_communicator(triangulation.get_communicator())
     , fe(FE_Q<2>(2), 2, FE_Q<2>(1), 1)
     , dofs(triangulation)
+    , flow_postprocessor(std::make_unique<FlowPostprocessor>())
   {}
 
 
@@ -631,6 +668,19 @@ namespace viscofilm
   StokesSolver::n_dofs() const
   {
     return dofs.n_dofs();
+  }
+
+
+  void
+  StokesSolver::add_output(DataOut<2> &data_out) const
+  {
+    const std::vector<std::string> names = {"velocity", "velocity", "pressure"};
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      interpretation = {DataComponentInterpretation::component_is_part_of_vector,
+                        DataComponentInterpretation::component_is_part_of_vector,
+                        DataComponentInterpretation::component_is_scalar};
+    data_out.add_data_vector(dofs, current_solution, names, interpretation);
+    data_out.add_data_vector(dofs, current_solution, *flow_postprocessor);
   }
 
 

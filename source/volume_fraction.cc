@@ -284,6 +284,13 @@ namespace viscofilm
   }
 
 
+  void
+  VolumeFraction::add_output(DataOut<2> &data_out) const
+  {
+    data_out.add_data_vector(dofs, current_solution, "volume_fraction");
+  }
+
+
   const DoFHandler<2> &
   VolumeFraction::dof_handler() const
   {

@@ -10,7 +10,10 @@
 
 #include <deal.II/distributed/tria.h>
 
+#include <deal.II/numerics/data_out.h>
+
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -80,13 +83,12 @@ namespace viscofilm
     bool
     snapshot_due(const unsigned int step, const bool last_step) const;
 
-    /// Write solution-NNNNN.h5 and rewrite solution.xdmf.
+    /// Write solution-NNNNN.h5 with the fields @p add_fields adds (each on
+    /// Q2 patches: two subdivisions per cell) and rewrite solution.xdmf.
     void
-    write_snapshot(const unsigned int    step,
-                   const double          time,
-                   const StokesSolver &  stokes,
-                   const VolumeFraction &volume_fraction,
-                   const ElasticStress & stress);
+    write_snapshot(const unsigned int                             step,
+                   const double                                   time,
+                   const std::function<void(DataOut<2> &)> &add_fields);
 
     /// Append one row per probe point to probes.csv.
     void

@@ -9,6 +9,7 @@
 #include <viscofilm/departure_feet.h>
 #include <viscofilm/geometry.h>
 #include <viscofilm/initial_conditions.h>
+#include <viscofilm/loads.h>
 #include <viscofilm/model.h>
 #include <viscofilm/output.h>
 #include <viscofilm/stokes.h>
@@ -39,6 +40,7 @@ namespace viscofilm
     ElasticStress::Parameters stress;
     DepartureFeet::Parameters departure_feet;
     VolumeFraction::Parameters stabilization;
+    BiofilmLoads::Parameters  detachment;
     Output::Parameters       output;
     Verification             verification;
   };

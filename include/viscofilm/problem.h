@@ -10,6 +10,7 @@
 #include <deal.II/distributed/tria.h>
 
 #include <viscofilm/departure_feet.h>
+#include <viscofilm/loads.h>
 #include <viscofilm/output.h>
 #include <viscofilm/parameters.h>
 #include <viscofilm/stokes.h>
@@ -70,6 +71,7 @@ namespace viscofilm
     VolumeFraction                          volume_fraction;
     ElasticStress                           stress;
     DepartureFeet                           departure_feet;
+    BiofilmLoads                            loads;
     Output                                  output;
   };
 } // namespace viscofilm

@@ -19,6 +19,9 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+
 #include <viscofilm/boundary_conditions.h>
 #include <viscofilm/departure_feet.h>
 #include <viscofilm/model.h>
@@ -133,6 +136,11 @@ namespace viscofilm
     double
     max_velocity() const;
 
+    /// Add velocity, pressure and the derived divergence (∇·u), vorticity
+    /// (∂v/∂x − ∂u/∂y) and inertia (|u·∇u|) to @p data_out.
+    void
+    add_output(DataOut<2> &data_out) const;
+
   private:
     void
     make_constraints(const double time);
@@ -168,6 +176,8 @@ namespace viscofilm
     TrilinosWrappers::MPI::BlockVector current_solution; // ghosted
     TrilinosWrappers::MPI::BlockVector old_solution;     // ghosted, u^n
     std::vector<Tensor<1, 2>>          old_velocity_at_feet; // per owned cell and q
+
+    std::unique_ptr<DataPostprocessor<2>> flow_postprocessor;
 
     bool matrix_is_current = false;
     bool preconditioner_is_current = false;

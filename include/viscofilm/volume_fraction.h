@@ -15,6 +15,8 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <deal.II/numerics/data_out.h>
+
 #include <viscofilm/boundary_conditions.h>
 
 namespace viscofilm
@@ -64,6 +66,10 @@ namespace viscofilm
 
     const DoFHandler<2> &
     dof_handler() const;
+
+    /// Add volume_fraction to @p data_out.
+    void
+    add_output(DataOut<2> &data_out) const;
 
     /// φ with ghost values.
     const TrilinosWrappers::MPI::Vector &
