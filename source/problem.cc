@@ -91,7 +91,7 @@ namespace viscofilm
   {
     StokesSolver::Coefficients coefficients{
       time,
-      parameters.time_stepping.time_step,
+      time_step,
       &volume_fraction.dof_handler(),
       &volume_fraction.solution(),
       &parameters.verification.body_force.function(),
@@ -112,10 +112,26 @@ namespace viscofilm
   }
 
 
+  double
+  Problem::choose_time_step(const double time, const double end_time) const
+  {
+    double k = parameters.time_stepping.time_step;
+    if (parameters.time_stepping.cfl > 0)
+      {
+        const double speed = stokes.max_velocity();
+        if (speed > 0)
+          k = std::min(k,
+                       parameters.time_stepping.cfl *
+                         parameters.geometry.initial_cell_size() / speed);
+      }
+    return std::min(k, end_time - time);
+  }
+
+
   Problem::StepReport
   Problem::do_time_step(const double time)
   {
-    const double k = parameters.time_stepping.time_step;
+    const double k = time_step;
     StepReport   report;
 
     // 1. Departure feet from u^n: c^n there, and u^n for the inertia term.
@@ -177,6 +193,10 @@ namespace viscofilm
     CsvFile &statistics = output.statistics();
     statistics.set("step", step);
     statistics.set("time", time);
+    statistics.set("time_step", time_step);
+    statistics.set("cfl",
+                   stokes.max_velocity() * time_step /
+                     parameters.geometry.initial_cell_size());
     statistics.set("stokes_iterations", report.total_stokes_iterations);
     statistics.set("picard_iterations", report.picard_iterations);
     statistics.set("picard_converged", report.picard_converged);
@@ -239,23 +259,27 @@ namespace viscofilm
     set_initial_conditions();
     output.prepare(prm);
 
-    const unsigned int n_steps   = parameters.time_stepping.n_steps;
-    const double       time_step = parameters.time_stepping.time_step;
+    const double end_time =
+      parameters.time_stepping.n_steps * parameters.time_stepping.time_step;
     write_statistics(0, 0.0, StepReport());
-    output_results(0, 0.0, n_steps == 0);
+    output_results(0, 0.0, end_time == 0);
 
     // Progress on rank 0: every step up to 200 steps, else 100 lines.
+    const unsigned int n_steps = parameters.time_stepping.n_steps;
     const unsigned int progress_interval = std::max(1u, n_steps / 100 * (n_steps > 200));
     const auto         start             = std::chrono::steady_clock::now();
-    for (unsigned int step = 1; step <= n_steps; ++step)
+    double             time              = 0;
+    for (unsigned int step = 1; time < end_time * (1 - 1e-12); ++step)
       {
-        const double time = step * time_step;
-        StepReport   report;
+        time_step = choose_time_step(time, end_time);
+        time += time_step;
+        const bool last_step = (time >= end_time * (1 - 1e-12));
+        StepReport report;
         try
           {
             report = do_time_step(time);
             write_statistics(step, time, report);
-            output_results(step, time, step == n_steps);
+            output_results(step, time, last_step);
             stokes.advance_time();
             stress.advance_time();
           }
@@ -268,20 +292,27 @@ namespace viscofilm
             throw ExcMessage(where.str());
           }
 
-        if (step % progress_interval == 0 || step == n_steps)
+        if (step % progress_interval == 0 || last_step)
           {
             const double elapsed =
               std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
                 .count();
-            pcout << "Step " << step << "/" << n_steps << "  t = " << time
-                  << "  max|u| = " << stokes.max_velocity()
+            pcout << "Step " << step << "  t = " << time << "/" << end_time
+                  << "  k = " << time_step << "  max|u| = " << stokes.max_velocity()
                   << "  Picard " << report.picard_iterations << " (Stokes "
                   << report.stokes_iterations << ")  " << std::fixed
                   << std::setprecision(1) << elapsed << " s, ~"
-                  << elapsed / step * (n_steps - step) << " s to go"
+                  << elapsed / time * (end_time - time) << " s to go"
                   << std::defaultfloat << std::setprecision(6) << std::endl;
           }
       }
     computing_timer.print_summary();
+    Utilities::System::MemoryStats memory;
+    Utilities::System::get_memory_stats(memory);
+    pcout << "Peak memory (VmHWM): "
+          << Utilities::MPI::max(memory.VmHWM, mpi_communicator) / 1024.0
+          << " MiB on the largest rank, "
+          << Utilities::MPI::sum(memory.VmHWM, mpi_communicator) / 1024.0
+          << " MiB in all" << std::endl;
   }
 } // namespace viscofilm

@@ -153,12 +153,14 @@ namespace viscofilm
     prm.enter_subsection("Stokes solver");
     prm.declare_entry("Method",
                       "block preconditioned",
-                      Patterns::Selection("block preconditioned|direct"),
+                      Patterns::Selection("block preconditioned|direct|thesis"),
                       "block preconditioned: FGMRES with AMG on the velocity "
                       "block and the 1/η-weighted pressure mass matrix for the "
                       "Schur complement (scales to large meshes). direct: "
                       "sparse LU (Amesos KLU) of the whole system, for tiny "
-                      "meshes and debugging.");
+                      "meshes and debugging. thesis: the thesis' solver, GMRES "
+                      "(AztecOO) with an incomplete LU factorisation of the "
+                      "whole system, as a baseline for benchmarks.");
     prm.declare_entry("Tolerance",
                       "1e-8",
                       Patterns::Double(0, 1),
@@ -182,8 +184,10 @@ namespace viscofilm
   StokesSolver::Parameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Stokes solver");
-    method = (prm.get("Method") == "direct" ? Method::direct :
-                                              Method::block_preconditioned);
+    const std::string name = prm.get("Method");
+    method = (name == "direct" ? Method::direct :
+              name == "thesis" ? Method::thesis :
+                                 Method::block_preconditioned);
     tolerance      = prm.get_double("Tolerance");
     max_iterations = prm.get_integer("Maximum iterations");
     const std::string a = prm.get("Viscosity averaging");
@@ -237,7 +241,7 @@ namespace viscofilm
     system_matrix.clear();
     preconditioner_matrix.clear();
     monolithic_matrix.clear();
-    if (parameters.method == Method::direct)
+    if (parameters.method != Method::block_preconditioned)
       {
         TrilinosWrappers::SparsityPattern sparsity(owned,
                                                    owned,
@@ -292,10 +296,11 @@ namespace viscofilm
     DoFTools::make_hanging_node_constraints(dofs, constraints);
     boundary_conditions.constrain_velocity(dofs, time, constraints);
 
-    // A direct solver needs a nonsingular matrix: without an outflow boundary
+    // A factorisation needs a nonsingular matrix: without an outflow boundary
     // pin the first pressure dof (a coarse-mesh vertex, never hanging); the
     // pressure is shifted to mean zero after the solve.
-    if (parameters.method == Method::direct && !boundary_conditions.has_outflow())
+    if (parameters.method != Method::block_preconditioned &&
+        !boundary_conditions.has_outflow())
       {
         const types::global_dof_index first_pressure_dof =
           owned_partitioning[0].size();
@@ -324,7 +329,7 @@ namespace viscofilm
     make_constraints(coefficients.time);
 
     const bool assemble_matrix = !matrix_is_current;
-    const bool direct = (parameters.method == Method::direct);
+    const bool direct = (parameters.method != Method::block_preconditioned);
     if (assemble_matrix && direct)
       monolithic_matrix = 0;
     else if (assemble_matrix)
@@ -555,11 +560,10 @@ namespace viscofilm
   {
     TrilinosWrappers::MPI::BlockVector distributed(owned_partitioning,
                                                    mpi_communicator);
-    unsigned int iterations = 0;
-    if (parameters.method == Method::direct)
-      solve_direct(distributed);
-    else
-      iterations = solve_block_preconditioned(distributed);
+    const unsigned int iterations =
+      (parameters.method == Method::block_preconditioned ?
+         solve_block_preconditioned(distributed) :
+         solve_monolithic(distributed));
     constraints.distribute(distributed);
     AssertThrow(std::isfinite(distributed.l2_norm()),
                 ExcMessage("the Stokes solution is not finite (NaN or inf)"));
@@ -611,23 +615,58 @@ namespace viscofilm
   }
 
 
-  void
-  StokesSolver::solve_direct(TrilinosWrappers::MPI::BlockVector &distributed)
+  unsigned int
+  StokesSolver::solve_monolithic(TrilinosWrappers::MPI::BlockVector &distributed)
   {
     const IndexSet &              owned = dofs.locally_owned_dofs();
     TrilinosWrappers::MPI::Vector rhs(owned, mpi_communicator);
     TrilinosWrappers::MPI::Vector solution(owned, mpi_communicator);
     for (const auto i : owned)
-      rhs(i) = system_rhs(i);
+      {
+        rhs(i)      = system_rhs(i);
+        solution(i) = current_solution(i);
+      }
     rhs.compress(VectorOperation::insert);
+    solution.compress(VectorOperation::insert);
 
-    SolverControl                  control(1, 0);
-    TrilinosWrappers::SolverDirect solver(control);
-    solver.solve(monolithic_matrix, solution, rhs);
+    unsigned int iterations = 0;
+    if (parameters.method == Method::direct)
+      {
+        SolverControl                  control(1, 0);
+        TrilinosWrappers::SolverDirect solver(control);
+        solver.solve(monolithic_matrix, solution, rhs);
+      }
+    else
+      {
+        // ILU(0) of the saddle-point matrix; the zero pressure diagonal
+        // needs the absolute diagonal shift ilu_atol to factorise.
+        TrilinosWrappers::PreconditionILU ilu;
+        ilu.initialize(monolithic_matrix,
+                       TrilinosWrappers::PreconditionILU::AdditionalData(0, 1e-8));
+        SolverControl control(parameters.max_iterations,
+                              parameters.tolerance * rhs.l2_norm());
+        TrilinosWrappers::SolverGMRES solver(
+          control, TrilinosWrappers::SolverGMRES::AdditionalData(false, 100));
+        try
+          {
+            solver.solve(monolithic_matrix, solution, rhs, ilu);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            throw ExcMessage("the Stokes solver (thesis: GMRES + ILU) did not "
+                             "converge in " + std::to_string(e.last_step) +
+                             " iterations: residual " +
+                             Utilities::to_string(e.last_residual) +
+                             " (Stokes solver/Maximum iterations = " +
+                             std::to_string(parameters.max_iterations) + ")");
+          }
+        iterations = control.last_step();
+      }
 
     for (const auto i : owned)
       distributed(i) = solution(i);
     distributed.compress(VectorOperation::insert);
+    return iterations;
   }
 
 

@@ -17,6 +17,13 @@ namespace viscofilm
                       Patterns::Integer(0),
                       "Number of time steps to take (0: write the initial "
                       "state only).");
+    prm.declare_entry("CFL number",
+                      "0",
+                      Patterns::Double(0),
+                      "0: every step is Time step long. > 0: each step is "
+                      "min(Time step, CFL number × Δx / max|u^n|) long (Δx the "
+                      "smallest cell edge), and the run ends at the time "
+                      "Number of steps × Time step.");
     prm.declare_entry("Picard tolerance",
                       "1e-6",
                       Patterns::Double(0),
@@ -38,6 +45,7 @@ namespace viscofilm
     prm.enter_subsection("Time stepping");
     time_step = prm.get_double("Time step");
     n_steps   = prm.get_integer("Number of steps");
+    cfl                   = prm.get_double("CFL number");
     picard_tolerance      = prm.get_double("Picard tolerance");
     max_picard_iterations = prm.get_integer("Maximum Picard iterations");
     prm.leave_subsection();

@@ -50,7 +50,12 @@ namespace viscofilm
     setup_dofs();
     void
     set_initial_conditions();
-    /// One step t_n -> t_{n+1} = @p time: feet, Picard loop, transport.
+    /// The length of the next step (Time stepping/CFL number), ending at
+    /// most at @p end_time.
+    double
+    choose_time_step(const double time, const double end_time) const;
+    /// One step t_n -> t_{n+1} = @p time of length time_step: feet, Picard
+    /// loop, transport.
     StepReport
     do_time_step(const double time);
     unsigned int
@@ -61,6 +66,7 @@ namespace viscofilm
     write_statistics(const unsigned int step, const double time, const StepReport &report);
 
     Parameters &            parameters;
+    double                  time_step = 0; // of the current step
     const ParameterHandler &prm;
     MPI_Comm                mpi_communicator;
     ConditionalOStream      pcout;

@@ -39,7 +39,8 @@ namespace viscofilm
     enum class Method
     {
       block_preconditioned, // FGMRES + block triangular preconditioner
-      direct                // Amesos KLU on the whole system (small meshes)
+      direct,               // Amesos KLU on the whole system (small meshes)
+      thesis                // the thesis' way: GMRES + ILU on the whole system
     };
 
     /// How η(φ) enters each cell.
@@ -148,8 +149,10 @@ namespace viscofilm
     build_preconditioner();
     unsigned int
     solve_block_preconditioned(TrilinosWrappers::MPI::BlockVector &distributed);
-    void
-    solve_direct(TrilinosWrappers::MPI::BlockVector &distributed);
+    /// Direct or thesis: the whole system as one matrix. Returns the
+    /// iteration count (0 if direct).
+    unsigned int
+    solve_monolithic(TrilinosWrappers::MPI::BlockVector &distributed);
     /// Shift the pressure to mean zero unless an outflow boundary fixes it.
     void
     normalize_pressure(TrilinosWrappers::MPI::BlockVector &distributed);
@@ -170,7 +173,7 @@ namespace viscofilm
 
     TrilinosWrappers::BlockSparseMatrix system_matrix;
     TrilinosWrappers::BlockSparseMatrix preconditioner_matrix; // (1/η) M_p
-    TrilinosWrappers::SparseMatrix      monolithic_matrix;     // direct only
+    TrilinosWrappers::SparseMatrix      monolithic_matrix;     // direct, thesis
 
     TrilinosWrappers::MPI::BlockVector system_rhs;
     TrilinosWrappers::MPI::BlockVector current_solution; // ghosted

@@ -18,6 +18,9 @@ namespace viscofilm
 
     double       time_step = 0.003125;
     unsigned int n_steps   = 200;
+    /// > 0: k = min(time_step, cfl Δx / max|u|) each step, up to the end
+    /// time n_steps × time_step.
+    double       cfl = 0;
 
     /// The Picard loop between Stokes and the stress (MODEL.md §3 step 2c).
     double       picard_tolerance      = 1e-6;
