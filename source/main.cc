@@ -6,7 +6,6 @@
 #include <viscofilm/parameters.h>
 #include <viscofilm/problem.h>
 
-#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -24,38 +23,55 @@ namespace
     "       viscofilm --help                print this message\n"
     "Run in parallel with: mpirun -np N viscofilm FILE.prm\n";
 
-  /// The text of @p filename with "include FILE" resolved relative to the
-  /// including file's directory (deal.II resolves it relative to the working
-  /// directory), so that prm/ variants can include prm/default.prm.
-  std::string
-  read_with_includes_resolved(const std::string &filename)
+  /// Parse @p filename into @p prm. "include FILE" (outside subsections)
+  /// reads FILE first, relative to the including file's directory (deal.II
+  /// would resolve it relative to the working directory), so that the cases
+  /// in prm/ can include prm/default.prm and be included in turn. The include
+  /// line becomes a comment, so messages keep the file's line numbers.
+  void
+  parse_with_includes(dealii::ParameterHandler &prm,
+                      const std::string &       filename,
+                      const unsigned int        depth = 0)
   {
-    std::ifstream     file(filename);
-    std::string       line, text;
-    const auto        directory = std::filesystem::path(filename).parent_path();
-    const std::string keyword   = "include";
-    while (std::getline(file, line))
+    using viscofilm::check_input;
+    check_input(depth < 16,
+                "parameter file \"" + filename +
+                  "\": includes nested more than 16 deep (a cycle?)");
+    check_input(std::filesystem::is_regular_file(filename),
+                "parameter file \"" + filename + "\" does not exist");
+    std::ifstream            file(filename);
+    std::string              line, text;
+    std::vector<std::string> includes;
+    int                      level = 0;
+    for (unsigned int number = 1; std::getline(file, line); ++number)
       {
-        const auto start = line.find_first_not_of(" \t");
-        if (start != std::string::npos && line.compare(start, keyword.size(), keyword) == 0 &&
-            line.size() > start + keyword.size() &&
-            std::isspace(line[start + keyword.size()]))
+        const std::string code =
+          dealii::Utilities::trim(line.substr(0, line.find('#')));
+        if (code.rfind("subsection ", 0) == 0)
+          ++level;
+        else if (code == "end")
+          --level;
+        else if (code.rfind("include ", 0) == 0 || code.rfind("INCLUDE ", 0) == 0)
           {
-            const std::filesystem::path included(
-              dealii::Utilities::trim(line.substr(start + keyword.size())));
-            viscofilm::check_input(
-              std::filesystem::is_regular_file(directory / included) ||
-                std::filesystem::is_regular_file(included),
-              "parameter file \"" + filename + "\" includes \"" +
-                included.string() + "\", which does not exist");
-            line = keyword + " " +
-                   (std::filesystem::is_regular_file(directory / included) ?
-                      (directory / included).string() :
-                      included.string());
+            check_input(level == 0,
+                        "line " + std::to_string(number) + " of \"" + filename +
+                          "\": include must stand outside subsections");
+            const std::filesystem::path included(dealii::Utilities::trim(code.substr(8)));
+            includes.push_back(
+              (std::filesystem::path(filename).parent_path() / included).string());
+            line = "# " + line;
           }
         text += line + "\n";
       }
-    return text;
+    for (const std::string &included : includes)
+      {
+        check_input(std::filesystem::is_regular_file(included),
+                    "parameter file \"" + filename + "\" includes \"" + included +
+                      "\", which does not exist");
+        parse_with_includes(prm, included, depth + 1);
+      }
+    std::istringstream stream(text);
+    prm.parse_input(stream, filename);
   }
 
 
@@ -72,8 +88,7 @@ namespace
                              filename.substr(filename.size() - 4) == ".prm",
                            "parameter file \"" + filename +
                              "\" must have the extension .prm");
-    std::istringstream text(read_with_includes_resolved(filename));
-    prm.parse_input(text, filename);
+    parse_with_includes(prm, filename);
     parameters.parse_parameters(prm);
   }
 } // namespace
