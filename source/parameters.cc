@@ -6,6 +6,7 @@ namespace viscofilm
   Parameters::declare_parameters(ParameterHandler &prm)
   {
     Geometry::declare_parameters(prm);
+    MeshRefinement::declare_parameters(prm);
     TimeStepping::declare_parameters(prm);
     Model::declare_parameters(prm);
     BoundaryConditions::declare_parameters(prm);
@@ -24,6 +25,7 @@ namespace viscofilm
   Parameters::parse_parameters(ParameterHandler &prm)
   {
     geometry.parse_parameters(prm);
+    mesh_refinement.parse_parameters(prm, geometry.initial_refinement);
     time_stepping.parse_parameters(prm);
     model.parse_parameters(prm);
     boundary_conditions.parse_parameters(prm);

@@ -57,6 +57,7 @@ namespace viscofilm
     volume_fraction.setup_dofs();
     stress.setup_dofs(stokes.quadrature());
     output.mesh_changed();
+    min_cell_size = GridTools::minimal_cell_diameter(triangulation) / std::sqrt(2.0);
     pcout << "Mesh: " << triangulation.n_global_active_cells() << " cells, Δx = "
           << parameters.geometry.initial_cell_size() << "; "
           << stokes.n_dofs() << " Stokes dofs, "
@@ -67,13 +68,45 @@ namespace viscofilm
   }
 
 
+  bool
+  Problem::refine_mesh()
+  {
+    TimerOutput::Scope t(computing_timer, "refine mesh");
+    if (!parameters.mesh_refinement.flag_cells(triangulation, volume_fraction))
+      return false;
+    triangulation.prepare_coarsening_and_refinement();
+    stokes.prepare_for_refinement();
+    stress.prepare_for_refinement();
+    volume_fraction.prepare_for_refinement();
+    triangulation.execute_coarsening_and_refinement();
+    stokes.finish_refinement();
+    stress.finish_refinement();
+    volume_fraction.finish_refinement();
+    output.mesh_changed();
+    min_cell_size = GridTools::minimal_cell_diameter(triangulation) / std::sqrt(2.0);
+    return true;
+  }
+
+
   void
   Problem::set_initial_conditions()
   {
     // u = 0, p = 0 are the solver's initial state; φ from the input,
     // softened (eq. 2.50); τ = 0.
-    volume_fraction.interpolate(
-      parameters.initial_conditions.volume_fraction.function());
+    const Function<2> &initial_phi =
+      parameters.initial_conditions.volume_fraction.function();
+    volume_fraction.interpolate(initial_phi);
+    // Resolve the initial interface: refine, and interpolate φ anew.
+    if (parameters.mesh_refinement.adaptive)
+      {
+        for (unsigned int cycle = parameters.geometry.initial_refinement;
+             cycle < parameters.mesh_refinement.max_level && refine_mesh();
+             ++cycle)
+          volume_fraction.interpolate(initial_phi);
+        pcout << "Adapted mesh: " << triangulation.n_global_active_cells()
+              << " cells, " << stokes.n_dofs() << " Stokes dofs, smallest Δx = "
+              << min_cell_size << std::endl;
+      }
     {
       TimerOutput::Scope t(computing_timer, "softening");
       volume_fraction.soften(parameters.model.diffusion,
@@ -120,9 +153,7 @@ namespace viscofilm
       {
         const double speed = stokes.max_velocity();
         if (speed > 0)
-          k = std::min(k,
-                       parameters.time_stepping.cfl *
-                         parameters.geometry.initial_cell_size() / speed);
+          k = std::min(k, parameters.time_stepping.cfl * min_cell_size / speed);
       }
     return std::min(k, end_time - time);
   }
@@ -194,9 +225,8 @@ namespace viscofilm
     statistics.set("step", step);
     statistics.set("time", time);
     statistics.set("time_step", time_step);
-    statistics.set("cfl",
-                   stokes.max_velocity() * time_step /
-                     parameters.geometry.initial_cell_size());
+    statistics.set("cfl", stokes.max_velocity() * time_step / min_cell_size);
+    statistics.set("cells", triangulation.n_global_active_cells());
     statistics.set("stokes_iterations", report.total_stokes_iterations);
     statistics.set("picard_iterations", report.picard_iterations);
     statistics.set("picard_converged", report.picard_converged);
@@ -282,6 +312,9 @@ namespace viscofilm
             output_results(step, time, last_step);
             stokes.advance_time();
             stress.advance_time();
+            if (parameters.mesh_refinement.adaptive && !last_step &&
+                step % parameters.mesh_refinement.interval == 0)
+              refine_mesh();
           }
         catch (const std::exception &e)
           {

@@ -66,8 +66,10 @@ namespace viscofilm
      * Block upper-triangular preconditioner for [A B^T; B 0] (step-55's
      * approach): the Schur complement B A^{-1} B^T is replaced by the
      * (1/η)-weighted pressure mass matrix, which is spectrally equivalent to
-     * it for variable viscosity, and A^{-1} by one AMG V-cycle. FGMRES
-     * tolerates that the inner CG solve makes it vary from call to call.
+     * it for variable viscosity, and A^{-1} by one AMG V-cycle (cheap) or by
+     * an AMG-preconditioned CG solve (expensive, ASPECT's fallback for hard
+     * cases such as hanging nodes at large viscosity contrasts). FGMRES
+     * tolerates that the inner CG solves make it vary from call to call.
      */
     class BlockSchurPreconditioner : public Subscriptor
     {
@@ -76,11 +78,13 @@ namespace viscofilm
         const TrilinosWrappers::BlockSparseMatrix &system_matrix,
         const TrilinosWrappers::SparseMatrix &     weighted_mass,
         const TrilinosWrappers::PreconditionAMG &  velocity_amg,
-        const TrilinosWrappers::PreconditionJacobi &mass_jacobi)
+        const TrilinosWrappers::PreconditionJacobi &mass_jacobi,
+        const bool                                  expensive)
         : system_matrix(system_matrix)
         , weighted_mass(weighted_mass)
         , velocity_amg(velocity_amg)
         , mass_jacobi(mass_jacobi)
+        , expensive(expensive)
       {}
 
       void
@@ -97,12 +101,20 @@ namespace viscofilm
             cg.solve(weighted_mass, dst.block(1), src.block(1), mass_jacobi);
           dst.block(1) *= -1.0;
         }
-        // Velocity: A z_u = r_u − B^T z_p, one V-cycle.
+        // Velocity: A z_u = r_u − B^T z_p.
         {
           TrilinosWrappers::MPI::Vector rhs(src.block(0));
           system_matrix.block(0, 1).vmult(rhs, dst.block(1));
           rhs.sadd(-1.0, src.block(0));
-          velocity_amg.vmult(dst.block(0), rhs);
+          if (expensive)
+            {
+              SolverControl control(1000, 1e-2 * rhs.l2_norm());
+              SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+              dst.block(0) = 0;
+              cg.solve(system_matrix.block(0, 0), dst.block(0), rhs, velocity_amg);
+            }
+          else
+            velocity_amg.vmult(dst.block(0), rhs);
         }
       }
 
@@ -111,6 +123,7 @@ namespace viscofilm
       const TrilinosWrappers::SparseMatrix &      weighted_mass;
       const TrilinosWrappers::PreconditionAMG &   velocity_amg;
       const TrilinosWrappers::PreconditionJacobi &mass_jacobi;
+      const bool                                  expensive;
     };
 
 
@@ -478,6 +491,12 @@ namespace viscofilm
         preconditioner_is_current = false;
       }
     system_rhs.compress(VectorOperation::add);
+    // Constrained rows are decoupled (their values come from distribute()).
+    // With zero right-hand side and first guess there they stay zero in the
+    // Krylov space; otherwise their diagonal, of the size of η, meets the
+    // preconditioner's pressure mass, of the size of h²/η, at hanging pressure
+    // nodes and stalls FGMRES at large viscosity contrasts.
+    constraints.set_zero(system_rhs);
   }
 
 
@@ -585,31 +604,42 @@ namespace viscofilm
     if (rhs_norm > 0)
       {
         distributed = current_solution; // the last solution as first guess
-        SolverControl control(parameters.max_iterations,
-                              parameters.tolerance * rhs_norm);
-        SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(
-          control,
-          SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(100));
-        const BlockSchurPreconditioner preconditioner(system_matrix,
-                                                      preconditioner_matrix.block(1, 1),
-                                                      *velocity_amg,
-                                                      *mass_jacobi);
-        try
+        constraints.set_zero(distributed);
+        // Cheap iterations first; if they stall, go on from where they got
+        // with expensive ones (ASPECT's strategy).
+        const unsigned int n_cheap = std::min(parameters.max_iterations, 100u);
+        for (const bool expensive : {false, true})
           {
-            solver.solve(system_matrix, distributed, system_rhs, preconditioner);
+            SolverControl control(expensive ? parameters.max_iterations : n_cheap,
+                                  parameters.tolerance * rhs_norm);
+            SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(
+              control,
+              SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(100));
+            const BlockSchurPreconditioner preconditioner(
+              system_matrix,
+              preconditioner_matrix.block(1, 1),
+              *velocity_amg,
+              *mass_jacobi,
+              expensive);
+            try
+              {
+                solver.solve(system_matrix, distributed, system_rhs, preconditioner);
+                iterations += control.last_step();
+                break;
+              }
+            catch (const SolverControl::NoConvergence &e)
+              {
+                iterations += e.last_step;
+                if (expensive)
+                  throw ExcMessage(
+                    "the Stokes solver (FGMRES) did not converge in " +
+                    std::to_string(iterations) + " iterations: residual " +
+                    Utilities::to_string(e.last_residual) + ", target " +
+                    Utilities::to_string(control.tolerance()) +
+                    " (Stokes solver/Maximum iterations = " +
+                    std::to_string(parameters.max_iterations) + ")");
+              }
           }
-        catch (const SolverControl::NoConvergence &e)
-          {
-            throw ExcMessage("the Stokes solver (FGMRES) did not converge in " +
-                             std::to_string(e.last_step) +
-                             " iterations: residual " +
-                             Utilities::to_string(e.last_residual) +
-                             ", target " +
-                             Utilities::to_string(control.tolerance()) +
-                             " (Stokes solver/Maximum iterations = " +
-                             std::to_string(parameters.max_iterations) + ")");
-          }
-        iterations = control.last_step();
       }
     return iterations;
   }
@@ -679,6 +709,25 @@ namespace viscofilm
     const double mean_pressure =
       VectorTools::compute_mean_value(dofs, QGauss<2>(3), current_solution, 2);
     distributed.block(1).add(-mean_pressure);
+  }
+
+
+  void
+  StokesSolver::prepare_for_refinement()
+  {
+    carrier.prepare(dofs, current_solution);
+  }
+
+
+  void
+  StokesSolver::finish_refinement()
+  {
+    setup_dofs();
+    TrilinosWrappers::MPI::BlockVector distributed(owned_partitioning,
+                                                   mpi_communicator);
+    carrier.finish(dofs, distributed);
+    current_solution = distributed;
+    old_solution     = distributed;
   }
 
 

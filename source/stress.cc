@@ -139,6 +139,11 @@ namespace viscofilm
     DoFTools::extract_locally_relevant_dofs(dofs, locally_relevant_dofs);
     current.reinit(owned, locally_relevant_dofs, comm);
     old.reinit(owned, locally_relevant_dofs, comm);
+    hanging_node_constraints.clear();
+    hanging_node_constraints.reinit(locally_relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dofs, hanging_node_constraints);
+    hanging_node_constraints.close();
+    stokes_quadrature = quadrature;
 
     const std::vector<Point<2>> &unit_support =
       fe.base_element(0).get_unit_support_points();
@@ -190,6 +195,7 @@ namespace viscofilm
         distributed[node.dofs[2]] = tau[2] + shift();
       }
     distributed.compress(VectorOperation::insert);
+    hanging_node_constraints.distribute(distributed);
     current = distributed;
     old     = distributed;
   }
@@ -356,6 +362,8 @@ namespace viscofilm
         distributed[nodes[i].dofs[2]] = c[1][1];
       }
     distributed.compress(VectorOperation::insert);
+    // A continuous c is continuous at hanging nodes too.
+    hanging_node_constraints.distribute(distributed);
     current = distributed;
   }
 
@@ -371,6 +379,25 @@ namespace viscofilm
     quadrature_values->get_function_values(current, c);
     for (unsigned int q = 0; q < tau.size(); ++q)
       tau[q] = SymmetricTensor<2, 2>({c[q][0] - shift(), c[q][2] - shift(), c[q][1]});
+  }
+
+
+  void
+  ElasticStress::prepare_for_refinement()
+  {
+    carrier.prepare(dofs, current);
+  }
+
+
+  void
+  ElasticStress::finish_refinement()
+  {
+    setup_dofs(stokes_quadrature);
+    TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
+                                              triangulation.get_communicator());
+    carrier.finish(dofs, distributed);
+    current = distributed;
+    old     = distributed;
   }
 
 

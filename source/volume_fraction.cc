@@ -291,6 +291,24 @@ namespace viscofilm
   }
 
 
+  void
+  VolumeFraction::prepare_for_refinement()
+  {
+    carrier.prepare(dofs, current_solution);
+  }
+
+
+  void
+  VolumeFraction::finish_refinement()
+  {
+    setup_dofs();
+    TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
+                                              mpi_communicator);
+    carrier.finish(dofs, distributed);
+    current_solution = distributed;
+  }
+
+
   const DoFHandler<2> &
   VolumeFraction::dof_handler() const
   {

@@ -10,6 +10,7 @@
 #include <viscofilm/geometry.h>
 #include <viscofilm/initial_conditions.h>
 #include <viscofilm/loads.h>
+#include <viscofilm/mesh_refinement.h>
 #include <viscofilm/model.h>
 #include <viscofilm/output.h>
 #include <viscofilm/stokes.h>
@@ -32,6 +33,7 @@ namespace viscofilm
     parse_parameters(ParameterHandler &prm);
 
     Geometry                 geometry;
+    MeshRefinement           mesh_refinement;
     TimeStepping             time_stepping;
     Model                    model;
     BoundaryConditions       boundary_conditions;

@@ -48,6 +48,10 @@ namespace viscofilm
     make_grid();
     void
     setup_dofs();
+    /// Adapt the mesh to the biofilm interface, carrying u, p, c and φ
+    /// over; false if no cell was flagged.
+    bool
+    refine_mesh();
     void
     set_initial_conditions();
     /// The length of the next step (Time stepping/CFL number), ending at
@@ -66,7 +70,8 @@ namespace viscofilm
     write_statistics(const unsigned int step, const double time, const StepReport &report);
 
     Parameters &            parameters;
-    double                  time_step = 0; // of the current step
+    double                  time_step     = 0; // of the current step
+    double                  min_cell_size = 0; // smallest cell edge
     const ParameterHandler &prm;
     MPI_Comm                mpi_communicator;
     ConditionalOStream      pcout;

@@ -24,6 +24,7 @@
 
 #include <viscofilm/boundary_conditions.h>
 #include <viscofilm/departure_feet.h>
+#include <viscofilm/mesh_refinement.h>
 #include <viscofilm/model.h>
 
 #include <functional>
@@ -119,6 +120,14 @@ namespace viscofilm
     unsigned int
     solve();
 
+    /// Keep the solution across a mesh change (between u^n := u^{n+1} and
+    /// the next step): prepare before the triangulation changes, finish
+    /// after; finish sets up the dofs anew.
+    void
+    prepare_for_refinement();
+    void
+    finish_refinement();
+
     /// u^n := current solution, before the next time step.
     void
     advance_time();
@@ -181,6 +190,7 @@ namespace viscofilm
     std::vector<Tensor<1, 2>>          old_velocity_at_feet; // per owned cell and q
 
     std::unique_ptr<DataPostprocessor<2>> flow_postprocessor;
+    SolutionCarrier<TrilinosWrappers::MPI::BlockVector> carrier;
 
     bool matrix_is_current = false;
     bool preconditioner_is_current = false;

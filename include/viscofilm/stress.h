@@ -15,12 +15,14 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/fe_values.h>
 
+#include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
 #include <viscofilm/departure_feet.h>
+#include <viscofilm/mesh_refinement.h>
 #include <viscofilm/model.h>
 
 #include <array>
@@ -85,6 +87,12 @@ namespace viscofilm
     stress_at_quadrature_points(const DoFHandler<2>::active_cell_iterator &cell,
                                 std::vector<SymmetricTensor<2, 2>> &tau) const;
 
+    /// Keep c across a mesh change (see StokesSolver).
+    void
+    prepare_for_refinement();
+    void
+    finish_refinement();
+
     /// c^n := c^{n+1}, before the next time step.
     void
     advance_time();
@@ -140,6 +148,9 @@ namespace viscofilm
     const FESystem<2>             fe;
     DoFHandler<2>                 dofs;
     IndexSet                      locally_relevant_dofs;
+    AffineConstraints<double>     hanging_node_constraints; // continuous c
+    Quadrature<2>                 stokes_quadrature;
+    SolutionCarrier<TrilinosWrappers::MPI::Vector> carrier;
     std::vector<Node>             nodes;
     std::vector<unsigned int>     node_of_owned_dof; // component-0 dofs only
     std::array<std::array<unsigned int, 3>, 3> lexicographic_node; // [ix][iy]

@@ -18,6 +18,7 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <viscofilm/boundary_conditions.h>
+#include <viscofilm/mesh_refinement.h>
 
 namespace viscofilm
 {
@@ -75,6 +76,12 @@ namespace viscofilm
     const TrilinosWrappers::MPI::Vector &
     solution() const;
 
+    /// Keep φ across a mesh change (see StokesSolver).
+    void
+    prepare_for_refinement();
+    void
+    finish_refinement();
+
     /// ∫_Ω φ dx.
     double
     integral() const;
@@ -103,6 +110,7 @@ namespace viscofilm
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;
     TrilinosWrappers::MPI::Vector current_solution; // ghosted
+    SolutionCarrier<TrilinosWrappers::MPI::Vector> carrier;
   };
 } // namespace viscofilm
 

@@ -1,0 +1,85 @@
+// Adaptive refinement at the biofilm interface: which cells to refine or
+// coarsen, and how solution vectors survive the mesh change.
+#ifndef viscofilm_mesh_refinement_h
+#define viscofilm_mesh_refinement_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/distributed/solution_transfer.h>
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/lac/affine_constraints.h>
+
+#include <memory>
+
+namespace viscofilm
+{
+  using namespace dealii;
+
+  class VolumeFraction;
+
+  class MeshRefinement
+  {
+  public:
+    static void
+    declare_parameters(ParameterHandler &prm);
+    /// @p initial_level: Geometry/Initial global refinement, which must lie
+    /// between the minimum and maximum level.
+    void
+    parse_parameters(ParameterHandler &prm, const unsigned int initial_level);
+
+    /// Flag cells where φ varies by more than the threshold across the cell
+    /// (the interface) for refinement, and those where it varies by less than
+    /// a quarter of it for coarsening, within the level bounds. Returns
+    /// whether any cell was flagged (collective).
+    bool
+    flag_cells(parallel::distributed::Triangulation<2> &triangulation,
+               const VolumeFraction &                   volume_fraction) const;
+
+    bool         adaptive  = false;
+    unsigned int interval  = 10;
+    unsigned int min_level = 0;
+    unsigned int max_level = 0;
+    double       threshold = 0.02;
+  };
+
+
+  /**
+   * Carries one solution vector of a DoFHandler across a mesh change:
+   * prepare() before the triangulation's execute_coarsening_and_refinement(),
+   * finish() after the DoFHandler was distributed anew; finish() applies the
+   * new hanging-node constraints.
+   */
+  template <typename VectorType>
+  class SolutionCarrier
+  {
+  public:
+    void
+    prepare(const DoFHandler<2> &dofs, const VectorType &ghosted)
+    {
+      transfer =
+        std::make_unique<parallel::distributed::SolutionTransfer<2, VectorType>>(dofs);
+      transfer->prepare_for_coarsening_and_refinement(ghosted);
+    }
+
+    /// @p distributed: a vector without ghosts laid out for the new dofs.
+    void
+    finish(const DoFHandler<2> &dofs, VectorType &distributed)
+    {
+      transfer->interpolate(distributed);
+      transfer.reset();
+      AffineConstraints<double> hanging(DoFTools::extract_locally_relevant_dofs(dofs));
+      DoFTools::make_hanging_node_constraints(dofs, hanging);
+      hanging.close();
+      hanging.distribute(distributed);
+    }
+
+  private:
+    std::unique_ptr<parallel::distributed::SolutionTransfer<2, VectorType>> transfer;
+  };
+} // namespace viscofilm
+
+#endif

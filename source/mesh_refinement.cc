@@ -1,0 +1,100 @@
+#include <deal.II/base/quadrature.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <viscofilm/input.h>
+#include <viscofilm/mesh_refinement.h>
+#include <viscofilm/volume_fraction.h>
+
+#include <algorithm>
+
+namespace viscofilm
+{
+  void
+  MeshRefinement::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mesh refinement");
+    prm.declare_entry("Adaptive",
+                      "false",
+                      Patterns::Bool(),
+                      "Refine the mesh at the biofilm interface and coarsen it "
+                      "away from it, at the start and every Interval steps.");
+    prm.declare_entry("Interval",
+                      "10",
+                      Patterns::Integer(1),
+                      "Time steps between mesh adaptations.");
+    prm.declare_entry("Minimum level",
+                      "3",
+                      Patterns::Integer(0, 12),
+                      "Coarsest refinement level (global refinements of the "
+                      "coarse mesh); <= Geometry/Initial global refinement.");
+    prm.declare_entry("Maximum level",
+                      "7",
+                      Patterns::Integer(0, 12),
+                      "Finest refinement level; >= Geometry/Initial global "
+                      "refinement. 7 gives Δx = 1/128 at the interface.");
+    prm.declare_entry("Refinement threshold",
+                      "0.02",
+                      Patterns::Double(0),
+                      "A cell is refined where φ varies across it (max − min at "
+                      "its Q2 nodes) by more than this, and coarsened where by "
+                      "less than a quarter of it. > 0; 0.02 is a fifth of the "
+                      "biofilm's φ = 0.1.");
+    prm.leave_subsection();
+  }
+
+
+  void
+  MeshRefinement::parse_parameters(ParameterHandler &prm,
+                                   const unsigned int initial_level)
+  {
+    prm.enter_subsection("Mesh refinement");
+    adaptive  = prm.get_bool("Adaptive");
+    interval  = prm.get_integer("Interval");
+    min_level = prm.get_integer("Minimum level");
+    max_level = prm.get_integer("Maximum level");
+    threshold = prm.get_double("Refinement threshold");
+    prm.leave_subsection();
+    if (!adaptive)
+      return;
+    check_input(threshold > 0, "Mesh refinement/Refinement threshold must be > 0, got 0");
+    check_input(min_level <= initial_level && initial_level <= max_level,
+                "Mesh refinement/Minimum level (" + std::to_string(min_level) +
+                  ") <= Geometry/Initial global refinement (" +
+                  std::to_string(initial_level) +
+                  ") <= Mesh refinement/Maximum level (" +
+                  std::to_string(max_level) + ") must hold");
+  }
+
+
+  bool
+  MeshRefinement::flag_cells(parallel::distributed::Triangulation<2> &triangulation,
+                             const VolumeFraction &volume_fraction) const
+  {
+    const DoFHandler<2> &dofs = volume_fraction.dof_handler();
+    const Quadrature<2>  nodes(dofs.get_fe().get_unit_support_points());
+    FEValues<2>          fe_values(dofs.get_fe(), nodes, update_values);
+    std::vector<double>  phi(nodes.size());
+    unsigned int         n_flagged = 0;
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(volume_fraction.solution(), phi);
+          const auto [low, high] = std::minmax_element(phi.begin(), phi.end());
+          const double variation = *high - *low;
+          const unsigned int level = cell->level();
+          if (variation > threshold && level < max_level)
+            {
+              cell->set_refine_flag();
+              ++n_flagged;
+            }
+          else if (variation < threshold / 4 && level > min_level)
+            {
+              cell->set_coarsen_flag();
+              ++n_flagged;
+            }
+        }
+    return Utilities::MPI::sum(n_flagged, triangulation.get_communicator()) > 0;
+  }
+} // namespace viscofilm
