@@ -63,11 +63,18 @@ namespace viscofilm
 
 
   void
-  Geometry::make_grid(parallel::distributed::Triangulation<2> &triangulation) const
+  Geometry::make_coarse_grid(parallel::distributed::Triangulation<2> &triangulation) const
   {
     const auto n = coarse_repetitions();
     GridGenerator::subdivided_hyper_rectangle(
       triangulation, {n[0], n[1]}, lower_left, upper_right, /*colorize*/ true);
+  }
+
+
+  void
+  Geometry::make_grid(parallel::distributed::Triangulation<2> &triangulation) const
+  {
+    make_coarse_grid(triangulation);
     triangulation.refine_global(initial_refinement);
   }
 

@@ -18,12 +18,31 @@ namespace viscofilm
 {
 
 
-  CsvFile::CsvFile(const std::string &filename, const MPI_Comm mpi_communicator)
+  CsvFile::CsvFile(const std::string &                filename,
+                   const MPI_Comm                     mpi_communicator,
+                   const std::optional<unsigned int> &resume_after_step)
     : is_writer(Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
   {
+    // Resuming: the header, and the rows up to the checkpoint's step.
+    std::string kept;
+    if (resume_after_step && is_writer)
+      {
+        std::ifstream old(filename);
+        std::string   line;
+        if (std::getline(old, line))
+          {
+            header = Utilities::split_string_list(line, ',');
+            kept   = line + "\n";
+          }
+        while (std::getline(old, line))
+          if (!line.empty() &&
+              std::stoul(line.substr(0, line.find(','))) <= *resume_after_step)
+            kept += line + "\n";
+      }
     if (is_writer)
       {
         file.open(filename);
+        file << kept;
         AssertThrow(file, ExcMessage("cannot open " + filename + " for writing"));
         file << std::setprecision(17);
       }
@@ -114,8 +133,11 @@ namespace viscofilm
 
 
   void
-  Output::prepare(const ParameterHandler &prm)
+  Output::prepare(const ParameterHandler &           prm,
+                  const std::optional<unsigned int> &resume_after_step,
+                  const std::vector<XDMFEntry> &     snapshots)
   {
+    xdmf_entries = snapshots;
     // Rank 0 creates the directory; every rank learns whether it worked, so
     // that all of them stop together if it did not.
     std::string failure;
@@ -135,10 +157,12 @@ namespace viscofilm
     AssertThrow(failure.empty(), ExcInput(failure));
     statistics_file = std::make_unique<CsvFile>(parameters.directory +
                                                   "/statistics.csv",
-                                                mpi_communicator);
+                                                mpi_communicator,
+                                                resume_after_step);
     if (!parameters.probe_points.empty())
       probes_file = std::make_unique<CsvFile>(parameters.directory + "/probes.csv",
-                                              mpi_communicator);
+                                              mpi_communicator,
+                                              resume_after_step);
   }
 
 
@@ -252,6 +276,13 @@ namespace viscofilm
         probes_file->set("tau_yy", c[i][2] - stress.shift());
         probes_file->write_row();
       }
+  }
+
+
+  const std::vector<XDMFEntry> &
+  Output::snapshots() const
+  {
+    return xdmf_entries;
   }
 
 

@@ -18,6 +18,7 @@ namespace viscofilm
     BiofilmLoads::Parameters::declare_parameters(prm);
     Output::Parameters::declare_parameters(prm);
     Verification::declare_parameters(prm);
+    Checkpoint::Parameters::declare_parameters(prm);
   }
 
 
@@ -37,6 +38,7 @@ namespace viscofilm
     detachment.parse_parameters(prm);
     output.parse_parameters(prm);
     verification.parse_parameters(prm);
+    checkpointing.parse_parameters(prm);
 
     for (const Point<2> &p : output.probe_points)
       check_input(geometry.contains(p),

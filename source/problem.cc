@@ -17,7 +17,8 @@ namespace viscofilm
     , prm(prm)
     , mpi_communicator(comm)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
-    , computing_timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times)
+    , computing_timer(
+        std::make_unique<TimerOutput>(comm, pcout, TimerOutput::never, TimerOutput::wall_times))
     , triangulation(comm,
                     Triangulation<2>::MeshSmoothing(
                       Triangulation<2>::smoothing_on_refinement |
@@ -38,13 +39,14 @@ namespace viscofilm
             volume_fraction,
             stress)
     , output(parameters.output, triangulation)
+    , checkpoint(parameters.checkpointing, parameters.output.directory, comm)
   {}
 
 
   void
   Problem::make_grid()
   {
-    TimerOutput::Scope t(computing_timer, "setup");
+    TimerOutput::Scope t(*computing_timer, "setup");
     parameters.geometry.make_grid(triangulation);
   }
 
@@ -52,12 +54,11 @@ namespace viscofilm
   void
   Problem::setup_dofs()
   {
-    TimerOutput::Scope t(computing_timer, "setup");
+    TimerOutput::Scope t(*computing_timer, "setup");
     stokes.setup_dofs();
     volume_fraction.setup_dofs();
     stress.setup_dofs(stokes.quadrature());
-    output.mesh_changed();
-    min_cell_size = GridTools::minimal_cell_diameter(triangulation) / std::sqrt(2.0);
+    mesh_changed();
     pcout << "Mesh: " << triangulation.n_global_active_cells() << " cells, Δx = "
           << parameters.geometry.initial_cell_size() << "; "
           << stokes.n_dofs() << " Stokes dofs, "
@@ -71,7 +72,7 @@ namespace viscofilm
   bool
   Problem::refine_mesh()
   {
-    TimerOutput::Scope t(computing_timer, "refine mesh");
+    TimerOutput::Scope t(*computing_timer, "refine mesh");
     if (!parameters.mesh_refinement.flag_cells(triangulation, volume_fraction))
       return false;
     triangulation.prepare_coarsening_and_refinement();
@@ -82,9 +83,53 @@ namespace viscofilm
     stokes.finish_refinement();
     stress.finish_refinement();
     volume_fraction.finish_refinement();
+    mesh_changed();
+    return true;
+  }
+
+
+  void
+  Problem::mesh_changed()
+  {
     output.mesh_changed();
     min_cell_size = GridTools::minimal_cell_diameter(triangulation) / std::sqrt(2.0);
-    return true;
+  }
+
+
+  void
+  Problem::write_checkpoint(const unsigned int step, const double time)
+  {
+    TimerOutput::Scope t(*computing_timer, "checkpoint");
+    const std::string mesh_file = checkpoint.begin();
+    stokes.prepare_for_checkpoint();
+    stress.prepare_for_checkpoint();
+    volume_fraction.prepare_for_checkpoint();
+    triangulation.save(mesh_file);
+    stokes.checkpoint_written();
+    stress.checkpoint_written();
+    volume_fraction.checkpoint_written();
+    checkpoint.commit({step, time, output.snapshots()}, prm);
+  }
+
+
+  Checkpoint::State
+  Problem::resume_from_checkpoint()
+  {
+    const Checkpoint::State state = checkpoint.read(prm);
+    {
+      TimerOutput::Scope t(*computing_timer, "setup");
+      parameters.geometry.make_coarse_grid(triangulation);
+      triangulation.load(checkpoint.mesh_file());
+    }
+    setup_dofs();
+    stokes.restore_from_checkpoint();
+    stress.restore_from_checkpoint();
+    volume_fraction.restore_from_checkpoint();
+    mesh_changed();
+    output.prepare(prm, state.step, state.snapshots);
+    pcout << "Resumed from " << parameters.output.directory << "/checkpoint at step "
+          << state.step << ", t = " << state.time << std::endl;
+    return state;
   }
 
 
@@ -108,7 +153,7 @@ namespace viscofilm
               << min_cell_size << std::endl;
       }
     {
-      TimerOutput::Scope t(computing_timer, "softening");
+      TimerOutput::Scope t(*computing_timer, "softening");
       volume_fraction.soften(parameters.model.diffusion,
                              parameters.initial_conditions.softening_steps,
                              parameters.initial_conditions.softening_time_step);
@@ -133,12 +178,12 @@ namespace viscofilm
         stress.stress_at_quadrature_points(cell, tau);
       }};
     {
-      TimerOutput::Scope t(computing_timer, "assemble stokes");
+      TimerOutput::Scope t(*computing_timer, "assemble stokes");
       stokes.assemble(coefficients);
     }
     unsigned int iterations;
     {
-      TimerOutput::Scope t(computing_timer, "solve stokes");
+      TimerOutput::Scope t(*computing_timer, "solve stokes");
       iterations = stokes.solve();
     }
     return iterations;
@@ -169,7 +214,7 @@ namespace viscofilm
     const bool viscoelastic = parameters.model.viscoelastic;
     departure_feet.reset_statistics();
     {
-      TimerOutput::Scope t(computing_timer, "departure feet");
+      TimerOutput::Scope t(*computing_timer, "departure feet");
       if (viscoelastic)
         stress.trace_back(departure_feet, stokes, k);
       stokes.trace_back(departure_feet, k);
@@ -190,7 +235,7 @@ namespace viscofilm
         if (!viscoelastic)
           break;
         {
-          TimerOutput::Scope t(computing_timer, "stress update");
+          TimerOutput::Scope t(*computing_timer, "stress update");
           stress.update(stokes, volume_fraction, k);
         }
         // The first iterate is compared with u^n: iterate at least twice so
@@ -207,7 +252,7 @@ namespace viscofilm
 
     // 3. φ^{n+1} with u^{n+1}; the viscosity changes with it.
     {
-      TimerOutput::Scope t(computing_timer, "volume fraction");
+      TimerOutput::Scope t(*computing_timer, "volume fraction");
       report.transport_iterations =
         volume_fraction.advance(stokes, parameters.model.diffusion, k);
     }
@@ -268,7 +313,7 @@ namespace viscofilm
                           const double       time,
                           const bool         last_step)
   {
-    TimerOutput::Scope t(computing_timer, "output");
+    TimerOutput::Scope t(*computing_timer, "output");
     output.write_probes(step, time, stokes, volume_fraction, stress);
     if (output.snapshot_due(step, last_step))
       output.write_snapshot(step, time, [this](DataOut<2> &data_out) {
@@ -283,23 +328,48 @@ namespace viscofilm
   void
   Problem::run()
   {
-    parameters.model.print(pcout);
-    make_grid();
-    setup_dofs();
-    set_initial_conditions();
-    output.prepare(prm);
+    try
+      {
+        run_time_loop();
+      }
+    catch (...)
+      {
+        computing_timer.reset();
+        throw;
+      }
+  }
 
+
+  void
+  Problem::run_time_loop()
+  {
+    parameters.model.print(pcout);
     const double end_time =
       parameters.time_stepping.n_steps * parameters.time_stepping.time_step;
-    write_statistics(0, 0.0, StepReport());
-    output_results(0, 0.0, end_time == 0);
+    unsigned int first_step = 1;
+    double       time       = 0;
+    if (parameters.checkpointing.resume)
+      {
+        const Checkpoint::State state = resume_from_checkpoint();
+        first_step                    = state.step + 1;
+        time                          = state.time;
+      }
+    else
+      {
+        make_grid();
+        setup_dofs();
+        set_initial_conditions();
+        output.prepare(prm);
+        write_statistics(0, 0.0, StepReport());
+        output_results(0, 0.0, end_time == 0);
+      }
 
     // Progress on rank 0: every step up to 200 steps, else 100 lines.
     const unsigned int n_steps = parameters.time_stepping.n_steps;
     const unsigned int progress_interval = std::max(1u, n_steps / 100 * (n_steps > 200));
     const auto         start             = std::chrono::steady_clock::now();
-    double             time              = 0;
-    for (unsigned int step = 1; time < end_time * (1 - 1e-12); ++step)
+    const double       start_time        = time;
+    for (unsigned int step = first_step; time < end_time * (1 - 1e-12); ++step)
       {
         time_step = choose_time_step(time, end_time);
         time += time_step;
@@ -315,6 +385,9 @@ namespace viscofilm
             if (parameters.mesh_refinement.adaptive && !last_step &&
                 step % parameters.mesh_refinement.interval == 0)
               refine_mesh();
+            if (checkpoint.due(step) ||
+                (last_step && parameters.checkpointing.interval > 0))
+              write_checkpoint(step, time);
           }
         catch (const std::exception &e)
           {
@@ -335,11 +408,11 @@ namespace viscofilm
                   << "  Picard " << report.picard_iterations << " (Stokes "
                   << report.stokes_iterations << ")  " << std::fixed
                   << std::setprecision(1) << elapsed << " s, ~"
-                  << elapsed / time * (end_time - time) << " s to go"
+                  << elapsed / (time - start_time) * (end_time - time) << " s to go"
                   << std::defaultfloat << std::setprecision(6) << std::endl;
           }
       }
-    computing_timer.print_summary();
+    computing_timer->print_summary();
     Utilities::System::MemoryStats memory;
     Utilities::System::get_memory_stats(memory);
     pcout << "Peak memory (VmHWM): "

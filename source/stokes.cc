@@ -732,6 +732,32 @@ namespace viscofilm
 
 
   void
+  StokesSolver::prepare_for_checkpoint()
+  {
+    carrier.prepare_checkpoint(dofs, current_solution);
+  }
+
+
+  void
+  StokesSolver::checkpoint_written()
+  {
+    carrier.release();
+  }
+
+
+  void
+  StokesSolver::restore_from_checkpoint()
+  {
+    setup_dofs();
+    TrilinosWrappers::MPI::BlockVector distributed(owned_partitioning,
+                                                   mpi_communicator);
+    carrier.restore(dofs, distributed);
+    current_solution = distributed;
+    old_solution     = distributed;
+  }
+
+
+  void
   StokesSolver::advance_time()
   {
     old_solution = current_solution;

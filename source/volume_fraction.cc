@@ -309,6 +309,31 @@ namespace viscofilm
   }
 
 
+  void
+  VolumeFraction::prepare_for_checkpoint()
+  {
+    carrier.prepare_checkpoint(dofs, current_solution);
+  }
+
+
+  void
+  VolumeFraction::checkpoint_written()
+  {
+    carrier.release();
+  }
+
+
+  void
+  VolumeFraction::restore_from_checkpoint()
+  {
+    setup_dofs();
+    TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
+                                              mpi_communicator);
+    carrier.restore(dofs, distributed);
+    current_solution = distributed;
+  }
+
+
   const DoFHandler<2> &
   VolumeFraction::dof_handler() const
   {

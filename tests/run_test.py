@@ -12,6 +12,10 @@ Modes
   error        run FILE.prm (or the --args command line), expect a non-zero
                exit status, the message in --reference on stderr, and no
                output directory.
+  restart      run FILE.prm (which sets Checkpointing/Interval) to its end, and
+               again stopped after --stop-after steps and resumed from its
+               checkpoint: the --compare columns of both must agree to
+               --numdiff (the reference is the uninterrupted run).
   hdf5         run FILE.prm and list the datasets of every snapshot named in
                solution.xdmf (needs h5py), numdiff the listing.
 
@@ -92,7 +96,7 @@ def compare(opts, text, workdir):
     produced = os.path.join(workdir, "test.output")
     with open(produced, "w") as f:
         f.write(text)
-    if os.environ.get("VISCOFILM_BLESS") == "1":
+    if os.environ.get("VISCOFILM_BLESS") == "1" and opts.mode != "restart":
         shutil.copy(produced, opts.reference)
         print("blessed " + opts.reference)
         return
@@ -200,6 +204,32 @@ def mode_error(opts, workdir):
             + "\n", workdir)
 
 
+def mode_restart(opts, workdir):
+    with open(opts.prm) as f:
+        base = f.read()
+    steps = read_prm_setting(base, "Number of steps")
+
+    def run(name, directory, n_steps, resume):
+        with open(os.path.join(workdir, name + ".prm"), "w") as f:
+            f.write(base + "\nsubsection Output\n  set Directory = %s\nend\n"
+                    "subsection Time stepping\n  set Number of steps = %s\nend\n"
+                    "subsection Checkpointing\n  set Resume = %s\nend\n"
+                    % (directory, n_steps, resume))
+        result = run_viscofilm(opts, [name + ".prm"], workdir)
+        if result.returncode != 0:
+            fail("viscofilm exited with %d in the %s run:\n%s"
+                 % (result.returncode, name, result.stderr))
+
+    run("uninterrupted", "full", steps, "false")
+    run("stopped", "part", opts.stop_after, "false")
+    run("resumed", "part", steps, "true")
+    opts.reference = os.path.join(workdir, "uninterrupted.output")
+    with open(opts.reference, "w") as f:
+        f.write(extract_columns(os.path.join(workdir, "full"), opts.compare))
+    compare(opts, extract_columns(os.path.join(workdir, "part"), opts.compare),
+            workdir)
+
+
 def mode_hdf5(opts, workdir):
     import h5py  # Debian's python3-h5py
 
@@ -225,7 +255,7 @@ def mode_hdf5(opts, workdir):
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--mode", required=True,
-                        choices=["run", "convergence", "error", "hdf5"])
+                        choices=["run", "convergence", "error", "restart", "hdf5"])
     parser.add_argument("--viscofilm", required=True)
     parser.add_argument("--mpiexec", default="mpirun")
     parser.add_argument("--mpiexec-flags", default="")
@@ -240,12 +270,13 @@ def main():
     parser.add_argument("--bound", action="append", default=[])
     parser.add_argument("--min-rates", default="")
     parser.add_argument("--timeout", type=float, default=600)
+    parser.add_argument("--stop-after", default="4")
     opts = parser.parse_args()
 
     shutil.rmtree(opts.workdir, ignore_errors=True)
     os.makedirs(opts.workdir)
     {"run": mode_run, "convergence": mode_convergence, "error": mode_error,
-     "hdf5": mode_hdf5}[opts.mode](opts, opts.workdir)
+     "restart": mode_restart, "hdf5": mode_hdf5}[opts.mode](opts, opts.workdir)
     print("PASSED")
 
 

@@ -34,6 +34,10 @@ namespace viscofilm
     void
     make_grid(parallel::distributed::Triangulation<2> &triangulation) const;
 
+    /// The coarse mesh alone (what a saved mesh is loaded into).
+    void
+    make_coarse_grid(parallel::distributed::Triangulation<2> &triangulation) const;
+
     /// Edge length of the initial cells (the thesis' Δx at refinement 5).
     double
     initial_cell_size() const;

@@ -51,7 +51,9 @@ namespace viscofilm
    * Carries one solution vector of a DoFHandler across a mesh change:
    * prepare() before the triangulation's execute_coarsening_and_refinement(),
    * finish() after the DoFHandler was distributed anew; finish() applies the
-   * new hanging-node constraints.
+   * new hanging-node constraints. Likewise through a checkpoint:
+   * prepare_checkpoint() before the triangulation's save(), release() after
+   * it, and restore() after load() and a new distribution of the dofs.
    */
   template <typename VectorType>
   class SolutionCarrier
@@ -65,11 +67,42 @@ namespace viscofilm
       transfer->prepare_for_coarsening_and_refinement(ghosted);
     }
 
+    void
+    prepare_checkpoint(const DoFHandler<2> &dofs, const VectorType &ghosted)
+    {
+      transfer =
+        std::make_unique<parallel::distributed::SolutionTransfer<2, VectorType>>(dofs);
+      transfer->prepare_for_serialization(ghosted);
+    }
+
+    void
+    release()
+    {
+      transfer.reset();
+    }
+
+    /// @p distributed: a vector without ghosts laid out for the new dofs.
+    void
+    restore(const DoFHandler<2> &dofs, VectorType &distributed)
+    {
+      transfer =
+        std::make_unique<parallel::distributed::SolutionTransfer<2, VectorType>>(dofs);
+      transfer->deserialize(distributed);
+      apply_hanging_node_constraints(dofs, distributed);
+    }
+
     /// @p distributed: a vector without ghosts laid out for the new dofs.
     void
     finish(const DoFHandler<2> &dofs, VectorType &distributed)
     {
       transfer->interpolate(distributed);
+      apply_hanging_node_constraints(dofs, distributed);
+    }
+
+  private:
+    void
+    apply_hanging_node_constraints(const DoFHandler<2> &dofs, VectorType &distributed)
+    {
       transfer.reset();
       AffineConstraints<double> hanging(DoFTools::extract_locally_relevant_dofs(dofs));
       DoFTools::make_hanging_node_constraints(dofs, hanging);
@@ -77,7 +110,6 @@ namespace viscofilm
       hanging.distribute(distributed);
     }
 
-  private:
     std::unique_ptr<parallel::distributed::SolutionTransfer<2, VectorType>> transfer;
   };
 } // namespace viscofilm

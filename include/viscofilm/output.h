@@ -15,6 +15,7 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,7 +36,11 @@ namespace viscofilm
   class CsvFile
   {
   public:
-    CsvFile(const std::string &filename, const MPI_Comm mpi_communicator);
+    /// With @p resume_after_step, continue the existing file: keep its rows
+    /// up to that step and append.
+    CsvFile(const std::string &                filename,
+            const MPI_Comm                     mpi_communicator,
+            const std::optional<unsigned int> &resume_after_step = {});
 
     /// Set a column of the current row; the first row fixes the columns.
     void
@@ -71,9 +76,17 @@ namespace viscofilm
     Output(const Parameters &                             parameters,
            const parallel::distributed::Triangulation<2> &triangulation);
 
-    /// Create the output directory and write the parameters used into it.
+    /// Create the output directory and write the parameters used into it;
+    /// when resuming after @p resume_after_step, continue the run's files
+    /// and its list of @p snapshots instead.
     void
-    prepare(const ParameterHandler &prm);
+    prepare(const ParameterHandler &           prm,
+            const std::optional<unsigned int> &resume_after_step = {},
+            const std::vector<XDMFEntry> &     snapshots         = {});
+
+    /// The snapshots written so far (for a checkpoint).
+    const std::vector<XDMFEntry> &
+    snapshots() const;
 
     /// The mesh changed: probe locations must be searched again.
     void

@@ -6,6 +6,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <viscofilm/boundary_conditions.h>
+#include <viscofilm/checkpoint.h>
 #include <viscofilm/departure_feet.h>
 #include <viscofilm/geometry.h>
 #include <viscofilm/initial_conditions.h>
@@ -45,6 +46,7 @@ namespace viscofilm
     BiofilmLoads::Parameters  detachment;
     Output::Parameters       output;
     Verification             verification;
+    Checkpoint::Parameters   checkpointing;
   };
 } // namespace viscofilm
 

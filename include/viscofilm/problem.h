@@ -9,6 +9,7 @@
 
 #include <deal.II/distributed/tria.h>
 
+#include <viscofilm/checkpoint.h>
 #include <viscofilm/departure_feet.h>
 #include <viscofilm/loads.h>
 #include <viscofilm/output.h>
@@ -17,6 +18,7 @@
 #include <viscofilm/stress.h>
 #include <viscofilm/volume_fraction.h>
 
+#include <memory>
 #include <string>
 
 namespace viscofilm
@@ -34,6 +36,8 @@ namespace viscofilm
     run();
 
   private:
+    void
+    run_time_loop();
     /// What one time step did, for statistics.csv and the screen.
     struct StepReport
     {
@@ -52,6 +56,15 @@ namespace viscofilm
     /// over; false if no cell was flagged.
     bool
     refine_mesh();
+    /// After any change of the mesh: caches that depend on it.
+    void
+    mesh_changed();
+    /// Save mesh, fields and the loop's state to OUTPUT/checkpoint.
+    void
+    write_checkpoint(const unsigned int step, const double time);
+    /// Load them; returns the state to continue from.
+    Checkpoint::State
+    resume_from_checkpoint();
     void
     set_initial_conditions();
     /// The length of the next step (Time stepping/CFL number), ending at
@@ -75,7 +88,9 @@ namespace viscofilm
     const ParameterHandler &prm;
     MPI_Comm                mpi_communicator;
     ConditionalOStream      pcout;
-    TimerOutput             computing_timer;
+    // A pointer, so that a failed run can drop it before its message: its
+    // destructor warns about the exception in flight otherwise.
+    std::unique_ptr<TimerOutput> computing_timer;
 
     parallel::distributed::Triangulation<2> triangulation;
     StokesSolver                            stokes;
@@ -84,6 +99,7 @@ namespace viscofilm
     DepartureFeet                           departure_feet;
     BiofilmLoads                            loads;
     Output                                  output;
+    Checkpoint                              checkpoint;
   };
 } // namespace viscofilm
 

@@ -92,6 +92,14 @@ namespace viscofilm
     prepare_for_refinement();
     void
     finish_refinement();
+    /// Keep the fields through a checkpoint: prepare before the mesh is
+    /// saved, written after; restore after it is loaded (sets up the dofs).
+    void
+    prepare_for_checkpoint();
+    void
+    checkpoint_written();
+    void
+    restore_from_checkpoint();
 
     /// c^n := c^{n+1}, before the next time step.
     void
