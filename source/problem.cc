@@ -122,9 +122,9 @@ namespace viscofilm
       triangulation.load(checkpoint.mesh_file());
     }
     setup_dofs();
-    stokes.restore_from_checkpoint();
-    stress.restore_from_checkpoint();
-    volume_fraction.restore_from_checkpoint();
+    stokes.finish_refinement();
+    stress.finish_refinement();
+    volume_fraction.finish_refinement();
     mesh_changed();
     output.prepare(prm, state.step, state.snapshots);
     pcout << "Resumed from " << parameters.output.directory << "/checkpoint at step "

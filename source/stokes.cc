@@ -746,18 +746,6 @@ namespace viscofilm
 
 
   void
-  StokesSolver::restore_from_checkpoint()
-  {
-    setup_dofs();
-    TrilinosWrappers::MPI::BlockVector distributed(owned_partitioning,
-                                                   mpi_communicator);
-    carrier.restore(dofs, distributed);
-    current_solution = distributed;
-    old_solution     = distributed;
-  }
-
-
-  void
   StokesSolver::advance_time()
   {
     old_solution = current_solution;

@@ -416,18 +416,6 @@ namespace viscofilm
 
 
   void
-  ElasticStress::restore_from_checkpoint()
-  {
-    setup_dofs(stokes_quadrature);
-    TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
-                                              triangulation.get_communicator());
-    carrier.restore(dofs, distributed);
-    current = distributed;
-    old     = distributed;
-  }
-
-
-  void
   ElasticStress::advance_time()
   {
     old = current;

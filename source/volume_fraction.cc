@@ -323,17 +323,6 @@ namespace viscofilm
   }
 
 
-  void
-  VolumeFraction::restore_from_checkpoint()
-  {
-    setup_dofs();
-    TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
-                                              mpi_communicator);
-    carrier.restore(dofs, distributed);
-    current_solution = distributed;
-  }
-
-
   const DoFHandler<2> &
   VolumeFraction::dof_handler() const
   {

@@ -53,7 +53,8 @@ namespace viscofilm
    * finish() after the DoFHandler was distributed anew; finish() applies the
    * new hanging-node constraints. Likewise through a checkpoint:
    * prepare_checkpoint() before the triangulation's save(), release() after
-   * it, and restore() after load() and a new distribution of the dofs.
+   * it, and finish() (with nothing prepared) after load() and a new
+   * distribution of the dofs.
    */
   template <typename VectorType>
   class SolutionCarrier
@@ -83,26 +84,16 @@ namespace viscofilm
 
     /// @p distributed: a vector without ghosts laid out for the new dofs.
     void
-    restore(const DoFHandler<2> &dofs, VectorType &distributed)
-    {
-      transfer =
-        std::make_unique<parallel::distributed::SolutionTransfer<2, VectorType>>(dofs);
-      transfer->deserialize(distributed);
-      apply_hanging_node_constraints(dofs, distributed);
-    }
-
-    /// @p distributed: a vector without ghosts laid out for the new dofs.
-    void
     finish(const DoFHandler<2> &dofs, VectorType &distributed)
     {
-      transfer->interpolate(distributed);
-      apply_hanging_node_constraints(dofs, distributed);
-    }
-
-  private:
-    void
-    apply_hanging_node_constraints(const DoFHandler<2> &dofs, VectorType &distributed)
-    {
+      if (transfer)
+        transfer->interpolate(distributed);
+      else
+        {
+          transfer = std::make_unique<
+            parallel::distributed::SolutionTransfer<2, VectorType>>(dofs);
+          transfer->deserialize(distributed);
+        }
       transfer.reset();
       AffineConstraints<double> hanging(DoFTools::extract_locally_relevant_dofs(dofs));
       DoFTools::make_hanging_node_constraints(dofs, hanging);

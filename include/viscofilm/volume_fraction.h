@@ -82,13 +82,12 @@ namespace viscofilm
     void
     finish_refinement();
     /// Keep the fields through a checkpoint: prepare before the mesh is
-    /// saved, written after; restore after it is loaded (sets up the dofs).
+    /// saved, written after; finish_refinement() after it is loaded.
     void
     prepare_for_checkpoint();
     void
     checkpoint_written();
-    void
-    restore_from_checkpoint();
+
 
     /// ∫_Ω φ dx.
     double
