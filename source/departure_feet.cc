@@ -9,26 +9,189 @@
 #include <viscofilm/departure_feet.h>
 #include <viscofilm/input.h>
 
+#include <algorithm>
+#include <optional>
+#include <set>
 #include <sstream>
 
 namespace viscofilm
 {
+  namespace
+  {
+    // Reference-cell distance within which a point counts as in a cell: the
+    // default of RemotePointEvaluation, so that both paths agree.
+    constexpr double unit_tolerance = 1e-6;
+
+    const Mapping<2> &
+    mapping()
+    {
+      return StaticMappingQ1<2>::mapping;
+    }
+  } // namespace
+
+
+  PointEvaluator::PointEvaluator(
+    const parallel::distributed::Triangulation<2> &triangulation)
+    : triangulation(triangulation)
+    , cache(triangulation, mapping())
+    , remote(unit_tolerance)
+  {}
+
+
+  std::optional<std::pair<Triangulation<2>::active_cell_iterator, Point<2>>>
+  PointEvaluator::walk(Triangulation<2>::active_cell_iterator cell,
+                       const Point<2> &                       p) const
+  {
+    // Feet lie a few cells from their nodes; a longer walk is left to the
+    // global search.
+    const unsigned int max_steps = 64;
+    for (unsigned int step = 0; step < max_steps && !cell->is_artificial(); ++step)
+      {
+        const Point<2> unit = mapping().transform_real_to_unit_cell(cell, p);
+        if (GeometryInfo<2>::distance_to_unit_cell(unit) < unit_tolerance)
+          return std::make_pair(cell, unit);
+        // Leave through the face p lies farthest beyond.
+        unsigned int face   = 0;
+        double       beyond = 0;
+        for (unsigned int d = 0; d < 2; ++d)
+          {
+            if (-unit[d] > beyond)
+              {
+                beyond = -unit[d];
+                face   = 2 * d;
+              }
+            if (unit[d] - 1 > beyond)
+              {
+                beyond = unit[d] - 1;
+                face   = 2 * d + 1;
+              }
+          }
+        if (cell->at_boundary(face))
+          break;
+        Triangulation<2>::cell_iterator next = cell->neighbor(face);
+        while (next->has_children())
+          {
+            unsigned int nearest = 0;
+            for (unsigned int c = 1; c < next->n_children(); ++c)
+              if (next->child(c)->center().distance(p) <
+                  next->child(nearest)->center().distance(p))
+                nearest = c;
+            next = next->child(nearest);
+          }
+        cell = next;
+      }
+    return std::nullopt;
+  }
+
+
+  void
+  PointEvaluator::reinit(const std::vector<Point<2>> &                        points,
+                         std::vector<Triangulation<2>::active_cell_iterator> &hints)
+  {
+    AssertDimension(points.size(), hints.size());
+    n_points = points.size();
+    local.clear();
+    remote_points.clear();
+    const auto &            vertex_to_cells = cache.get_vertex_to_cell_map();
+    std::vector<LocalPoint> sharing;
+    for (unsigned int i = 0; i < points.size(); ++i)
+      {
+        const auto found = walk(hints[i], points[i]);
+        bool       here  = found.has_value();
+        sharing.clear();
+        if (here)
+          {
+            const auto &[cell, unit] = *found;
+            hints[i]                 = cell;
+            bool on_cell_boundary    = false;
+            for (unsigned int d = 0; d < 2; ++d)
+              on_cell_boundary = on_cell_boundary || unit[d] < unit_tolerance ||
+                                 unit[d] > 1 - unit_tolerance;
+            if (!on_cell_boundary)
+              sharing.push_back({cell, unit, i, 1.0});
+            else
+              {
+                // Every cell containing the point has one of cell's vertices
+                // (also across hanging nodes).
+                std::set<Triangulation<2>::active_cell_iterator> candidates;
+                for (const unsigned int v : cell->vertex_indices())
+                  {
+                    const auto &around = vertex_to_cells[cell->vertex_index(v)];
+                    candidates.insert(around.begin(), around.end());
+                  }
+                for (const auto &candidate : candidates)
+                  {
+                    const Point<2> u =
+                      mapping().transform_real_to_unit_cell(candidate, points[i]);
+                    if (GeometryInfo<2>::distance_to_unit_cell(u) >= unit_tolerance)
+                      continue;
+                    if (candidate->is_artificial())
+                      {
+                        here = false;
+                        break;
+                      }
+                    sharing.push_back({candidate, u, i, 0.0});
+                  }
+                for (LocalPoint &s : sharing)
+                  s.weight = 1.0 / sharing.size();
+              }
+          }
+        if (here)
+          local.insert(local.end(), sharing.begin(), sharing.end());
+        else
+          remote_points.push_back(i);
+      }
+    std::sort(local.begin(), local.end(), [](const LocalPoint &a, const LocalPoint &b) {
+      return a.cell < b.cell;
+    });
+
+    const MPI_Comm comm = triangulation.get_communicator();
+    any_remote = Utilities::MPI::max(remote_points.empty() ? 0u : 1u, comm) > 0;
+    if (any_remote)
+      {
+        std::vector<Point<2>> remote_locations;
+        for (const unsigned int i : remote_points)
+          remote_locations.push_back(points[i]);
+        remote.reinit(remote_locations, triangulation, mapping());
+      }
+  }
+
+
   template <int n>
   std::vector<std::array<double, n>>
-  evaluate_at_points(const Utilities::MPI::RemotePointEvaluation<2> &cache,
-                     const CellEvaluation<n> &                       evaluate_cell)
+  PointEvaluator::evaluate(const CellEvaluation<n> &evaluate_cell) const
   {
     using Value = std::array<double, n>;
+    std::vector<Value>    result(n_points, Value{});
+    std::vector<Point<2>> unit_points;
+    std::vector<Value>    values;
+    for (auto begin = local.begin(); begin != local.end();)
+      {
+        auto end = begin;
+        unit_points.clear();
+        for (; end != local.end() && end->cell == begin->cell; ++end)
+          unit_points.push_back(end->unit_point);
+        values.resize(unit_points.size());
+        evaluate_cell(begin->cell, make_array_view(unit_points), make_array_view(values));
+        for (auto point = begin; point != end; ++point)
+          for (unsigned int k = 0; k < n; ++k)
+            result[point->point][k] += point->weight * values[point - begin][k];
+        begin = end;
+      }
+    if (!any_remote)
+      return result;
+
     std::vector<Value> contributions, buffer;
-    cache.template evaluate_and_process<Value>(
+    remote.template evaluate_and_process<Value>(
       contributions,
       buffer,
       [&](const ArrayView<Value> &values,
           const typename Utilities::MPI::RemotePointEvaluation<2>::CellData &data) {
         for (unsigned int c = 0; c < data.cells.size(); ++c)
           {
-            const Triangulation<2>::active_cell_iterator cell(
-              &cache.get_triangulation(), data.cells[c].first, data.cells[c].second);
+            const Triangulation<2>::active_cell_iterator cell(&triangulation,
+                                                              data.cells[c].first,
+                                                              data.cells[c].second);
             const unsigned int begin = data.reference_point_ptrs[c];
             const unsigned int count = data.reference_point_ptrs[c + 1] - begin;
             evaluate_cell(cell,
@@ -37,48 +200,49 @@ namespace viscofilm
                           ArrayView<Value>(values.data() + begin, count));
           }
       });
-
-    const std::vector<unsigned int> &ptrs = cache.get_point_ptrs();
-    std::vector<Value>               result(ptrs.size() - 1);
-    for (unsigned int i = 0; i + 1 < ptrs.size(); ++i)
+    const std::vector<unsigned int> &ptrs = remote.get_point_ptrs();
+    for (unsigned int j = 0; j < remote_points.size(); ++j)
       {
-        const unsigned int count = ptrs[i + 1] - ptrs[i];
+        const unsigned int count = ptrs[j + 1] - ptrs[j];
         AssertThrow(count > 0,
                     ExcMessage("a point needed by the semi-Lagrangian scheme "
                                "lies in no cell of the mesh"));
-        Value mean{};
-        for (unsigned int j = ptrs[i]; j < ptrs[i + 1]; ++j)
+        Value &mean = result[remote_points[j]];
+        for (unsigned int c = ptrs[j]; c < ptrs[j + 1]; ++c)
           for (unsigned int k = 0; k < n; ++k)
-            mean[k] += contributions[j][k] / count;
-        result[i] = mean;
+            mean[k] += contributions[c][k] / count;
       }
     return result;
   }
 
   template std::vector<std::array<double, 4>>
-  evaluate_at_points<4>(const Utilities::MPI::RemotePointEvaluation<2> &,
-                        const CellEvaluation<4> &);
+  PointEvaluator::evaluate<4>(const CellEvaluation<4> &) const;
   template std::vector<std::array<double, 6>>
-  evaluate_at_points<6>(const Utilities::MPI::RemotePointEvaluation<2> &,
-                        const CellEvaluation<6> &);
+  PointEvaluator::evaluate<6>(const CellEvaluation<6> &) const;
+
+
+  unsigned int
+  PointEvaluator::n_remote_points() const
+  {
+    return remote_points.size();
+  }
 
 
   std::vector<std::array<double, 6>>
-  evaluate_velocity(const Utilities::MPI::RemotePointEvaluation<2> &cache,
-                    const DoFHandler<2> &                           stokes_dofs,
-                    const TrilinosWrappers::MPI::BlockVector &      stokes_solution)
+  evaluate_velocity(const PointEvaluator &                    points,
+                    const DoFHandler<2> &                     stokes_dofs,
+                    const TrilinosWrappers::MPI::BlockVector &stokes_solution)
   {
-    FEPointEvaluation<2, 2> velocity(StaticMappingQ1<2>::mapping,
+    FEPointEvaluation<2, 2> velocity(mapping(),
                                      stokes_dofs.get_fe(),
                                      update_values | update_gradients,
                                      0);
     std::vector<double> dof_values(stokes_dofs.get_fe().n_dofs_per_cell());
-    return evaluate_at_points<6>(
-      cache,
+    return points.evaluate<6>(
       [&](const Triangulation<2>::active_cell_iterator &cell,
           const ArrayView<const Point<2>> &             unit_points,
           const ArrayView<std::array<double, 6>> &      values) {
-        const DoFHandler<2>::active_cell_iterator dof_cell(&cache.get_triangulation(),
+        const DoFHandler<2>::active_cell_iterator dof_cell(&stokes_dofs.get_triangulation(),
                                                            cell->level(),
                                                            cell->index(),
                                                            &stokes_dofs);
@@ -134,6 +298,7 @@ namespace viscofilm
     : parameters(parameters)
     , geometry(geometry)
     , triangulation(triangulation)
+    , evaluator(triangulation)
   {}
 
 
@@ -187,12 +352,12 @@ namespace viscofilm
       parameters.newton_tolerance *
       GridTools::minimal_cell_diameter(triangulation) / std::sqrt(2.0);
 
-    std::vector<Point<2>>     feet(points);
-    std::vector<unsigned int> active(points.size());
+    std::vector<Point<2>>                               feet(points);
+    std::vector<Triangulation<2>::active_cell_iterator> hints(cells);
+    std::vector<unsigned int>                           active(points.size());
     for (unsigned int i = 0; i < points.size(); ++i)
       active[i] = i;
 
-    Utilities::MPI::RemotePointEvaluation<2> cache;
     unsigned int                             iteration = 0;
     unsigned int                             n_left_domain = 0;
     while (Utilities::MPI::max(static_cast<unsigned int>(active.size()), comm) > 0)
@@ -213,12 +378,18 @@ namespace viscofilm
           }()));
         ++iteration;
 
-        std::vector<Point<2>> midpoints(active.size());
+        std::vector<Point<2>>                               midpoints(active.size());
+        std::vector<Triangulation<2>::active_cell_iterator> midpoint_cells(active.size());
         for (unsigned int j = 0; j < active.size(); ++j)
-          midpoints[j] = project_into_domain(
-            Point<2>(0.5 * (points[active[j]] + feet[active[j]])));
-        cache.reinit(midpoints, triangulation, StaticMappingQ1<2>::mapping);
-        const auto values = evaluate_velocity(cache, stokes_dofs, stokes_solution);
+          {
+            midpoints[j] = project_into_domain(
+              Point<2>(0.5 * (points[active[j]] + feet[active[j]])));
+            midpoint_cells[j] = hints[active[j]];
+          }
+        evaluator.reinit(midpoints, midpoint_cells);
+        const auto values = evaluate_velocity(evaluator, stokes_dofs, stokes_solution);
+        for (unsigned int j = 0; j < active.size(); ++j)
+          hints[active[j]] = midpoint_cells[j];
 
         std::vector<unsigned int> still_active;
         for (unsigned int j = 0; j < active.size(); ++j)
@@ -244,6 +415,8 @@ namespace viscofilm
         active.swap(still_active);
       }
 
+    evaluator.reinit(feet, hints);
+
     unsigned int n_left_cell = 0;
     for (unsigned int i = 0; i < points.size(); ++i)
       if (!inside_patch(cells[i], points[i], feet[i]))
@@ -254,6 +427,13 @@ namespace viscofilm
     accumulated.n_left_cell += Utilities::MPI::sum(n_left_cell, comm);
     accumulated.n_left_domain += Utilities::MPI::sum(n_left_domain, comm);
     return feet;
+  }
+
+
+  const PointEvaluator &
+  DepartureFeet::at_feet() const
+  {
+    return evaluator;
   }
 
 

@@ -526,11 +526,8 @@ namespace viscofilm
               cells.push_back(cell);
             }
         }
-    const std::vector<Point<2>> foot =
-      feet.compute(points, cells, dofs, old_solution, time_step);
-    Utilities::MPI::RemotePointEvaluation<2> cache;
-    cache.reinit(foot, triangulation, StaticMappingQ1<2>::mapping);
-    for (const auto &value : evaluate_velocity(cache, dofs, old_solution))
+    feet.compute(points, cells, dofs, old_solution, time_step);
+    for (const auto &value : evaluate_velocity(feet.at_feet(), dofs, old_solution))
       old_velocity_at_feet.emplace_back(Tensor<1, 2>({value[0], value[1]}));
   }
 

@@ -213,8 +213,7 @@ namespace viscofilm
         points[i] = nodes[i].position;
         cells[i]  = nodes[i].cell;
       }
-    const std::vector<Point<2>> foot =
-      feet.compute(points, cells, stokes.dof_handler(), stokes.solution(), time_step);
+    feet.compute(points, cells, stokes.dof_handler(), stokes.solution(), time_step);
 
     // c^n at the feet, on whichever rank owns them.
     const MPI_Comm     comm      = triangulation.get_communicator();
@@ -261,9 +260,7 @@ namespace viscofilm
           }
       };
 
-    Utilities::MPI::RemotePointEvaluation<2> cache;
-    cache.reinit(foot, triangulation, StaticMappingQ1<2>::mapping);
-    const auto   values = evaluate_at_points<4>(cache, evaluate);
+    const auto   values = feet.at_feet().evaluate<4>(evaluate);
     unsigned int remote = 0;
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {

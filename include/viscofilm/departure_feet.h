@@ -11,6 +11,8 @@
 
 #include <deal.II/distributed/tria.h>
 
+#include <deal.II/grid/grid_tools_cache.h>
+
 #include <deal.II/dofs/dof_handler.h>
 
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
@@ -19,6 +21,7 @@
 
 #include <array>
 #include <functional>
+#include <optional>
 #include <vector>
 
 namespace viscofilm
@@ -34,22 +37,69 @@ namespace viscofilm
                        const ArrayView<std::array<double, n>> &  values)>;
 
   /**
-   * Evaluate at the points given to @p cache.reinit(): each point is handled
-   * by the rank owning a cell around it. A point on an edge or vertex shared
-   * by several cells gets the mean of their values (so a discontinuous
-   * gradient is averaged). Collective; throws if a point is not found.
+   * Fields at arbitrary points of the distributed mesh. Each point comes with
+   * a hint, a cell near it (the cell of the node or quadrature point it was
+   * traced back from); the point is found by walking from the hint across
+   * faces, O(cells walked) per point. A point in a locally owned cell, or in
+   * ghost cells only, is evaluated on this rank (ghosted vectors hold the
+   * values of ghost cells); the others go to
+   * Utilities::MPI::RemotePointEvaluation, which finds them on the rank that
+   * owns them. (deal.II 9.4's search alone costs O(all cells) per point on a
+   * cell face, which made the feet 70 % of a run at Δx = 1/256.) A point on
+   * a face or vertex gets the mean over all cells sharing it (so a
+   * discontinuous field is averaged), on either path.
    */
-  template <int n>
-  std::vector<std::array<double, n>>
-  evaluate_at_points(const Utilities::MPI::RemotePointEvaluation<2> &cache,
-                     const CellEvaluation<n> &                       evaluate_cell);
+  class PointEvaluator
+  {
+  public:
+    explicit PointEvaluator(const parallel::distributed::Triangulation<2> &triangulation);
+
+    /// Locate @p points; @p hints (one per point) become the cells found,
+    /// good hints for points near these. Collective.
+    void
+    reinit(const std::vector<Point<2>> &                         points,
+           std::vector<Triangulation<2>::active_cell_iterator> &hints);
+
+    /// The values of @p evaluate_cell at the points of the last reinit().
+    /// Collective; throws if a point lies in no cell of the mesh.
+    template <int n>
+    std::vector<std::array<double, n>>
+    evaluate(const CellEvaluation<n> &evaluate_cell) const;
+
+    /// Points of the last reinit() that went to another rank, on this rank.
+    unsigned int
+    n_remote_points() const;
+
+  private:
+    /// Walk from @p cell towards @p p across faces: the cell around p (to
+    /// within the tolerance) and p's reference coordinates there, or nothing
+    /// if the walk reaches an artificial cell, the boundary or its step limit.
+    std::optional<std::pair<Triangulation<2>::active_cell_iterator, Point<2>>>
+    walk(Triangulation<2>::active_cell_iterator cell, const Point<2> &p) const;
+
+    struct LocalPoint
+    {
+      Triangulation<2>::active_cell_iterator cell;
+      Point<2>                               unit_point;
+      unsigned int                           point;  // index in reinit()'s points
+      double                                 weight; // 1 / cells sharing the point
+    };
+
+    const parallel::distributed::Triangulation<2> &triangulation;
+    GridTools::Cache<2>                            cache; // vertex → cells
+    std::vector<LocalPoint>                        local; // sorted by cell
+    std::vector<unsigned int>                      remote_points;
+    bool                                           any_remote = false; // on any rank
+    Utilities::MPI::RemotePointEvaluation<2>       remote;
+    unsigned int                                   n_points = 0;
+  };
 
   /// u and ∇u (u, v, ∂u/∂x, ∂u/∂y, ∂v/∂x, ∂v/∂y) at the points of
-  /// @p cache, from the velocity part of a (ghosted) Stokes solution.
+  /// @p points, from the velocity part of a (ghosted) Stokes solution.
   std::vector<std::array<double, 6>>
-  evaluate_velocity(const Utilities::MPI::RemotePointEvaluation<2> &cache,
-                    const DoFHandler<2> &                           stokes_dofs,
-                    const TrilinosWrappers::MPI::BlockVector &      stokes_solution);
+  evaluate_velocity(const PointEvaluator &                    points,
+                    const DoFHandler<2> &                     stokes_dofs,
+                    const TrilinosWrappers::MPI::BlockVector &stokes_solution);
 
   class DepartureFeet
   {
@@ -83,14 +133,19 @@ namespace viscofilm
      * (∇G = I + (k/2) ∇u) from y = x. @p cells are the cells the points
      * came from (to count the feet that left them). u is the velocity part
      * of @p stokes_solution (ghosted) on @p stokes_dofs. A foot outside the
-     * channel is moved to the nearest boundary point. Collective.
+     * channel is moved to the nearest boundary point. at_feet() then
+     * evaluates fields at the feet. Collective.
      */
     std::vector<Point<2>>
-    compute(const std::vector<Point<2>> &                         points,
+    compute(const std::vector<Point<2>> &                              points,
             const std::vector<Triangulation<2>::active_cell_iterator> &cells,
             const DoFHandler<2> &                                 stokes_dofs,
             const TrilinosWrappers::MPI::BlockVector &            stokes_solution,
             const double                                          time_step);
+
+    /// Located at the feet of the last compute().
+    const PointEvaluator &
+    at_feet() const;
 
     /// Statistics since the last reset_statistics().
     const Statistics &
@@ -113,6 +168,7 @@ namespace viscofilm
     const Parameters &                             parameters;
     const Geometry &                               geometry;
     const parallel::distributed::Triangulation<2> &triangulation;
+    PointEvaluator                                 evaluator; // midpoints, then feet
     Statistics                                     accumulated;
   };
 } // namespace viscofilm
