@@ -1,0 +1,116 @@
+"""Shared helpers of the benchmark scripts: the viscofilm binary, MPI runs as
+root, the machine and source description, and reading a run's CSV files."""
+
+import csv
+import os
+import re
+import subprocess
+import sys
+import time
+
+SCRIPT_DIR = os.path.dirname(os.path.realpath(__file__))
+REPO = os.path.dirname(SCRIPT_DIR)
+
+
+def die(message):
+    print("%s: ERROR: %s" % (os.path.basename(sys.argv[0]), message), file=sys.stderr)
+    sys.exit(1)
+
+
+def log(message):
+    print("%s: %s" % (os.path.basename(sys.argv[0]), message), file=sys.stderr, flush=True)
+
+
+def ensure_binary():
+    """$VISCOFILM_BUILD (default build/) and its viscofilm, built if missing."""
+    build = os.path.abspath(os.environ.get("VISCOFILM_BUILD", os.path.join(REPO, "build")))
+    binary = os.path.join(build, "viscofilm")
+    if not os.access(binary, os.X_OK):
+        log("no %s; building it with scripts/setup.sh" % binary)
+        env = dict(os.environ, VISCOFILM_BUILD=build)
+        result = subprocess.run(["bash", os.path.join(REPO, "scripts", "setup.sh")], env=env)
+        if result.returncode != 0 or not os.access(binary, os.X_OK):
+            die("scripts/setup.sh did not produce %s" % binary)
+    return build, binary
+
+
+def mpi_environment():
+    env = dict(os.environ)
+    if os.geteuid() == 0:
+        env["OMPI_ALLOW_RUN_AS_ROOT"] = "1"
+        env["OMPI_ALLOW_RUN_AS_ROOT_CONFIRM"] = "1"
+    return env
+
+
+def machine_description():
+    model = "unknown CPU"
+    try:
+        with open("/proc/cpuinfo") as cpuinfo:
+            for line in cpuinfo:
+                if line.startswith("model name"):
+                    model = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    return "nproc = %d, CPU: %s" % (os.cpu_count() or 0, model)
+
+
+def source_of(build):
+    """The source tree the binary was configured from (CMakeCache) and its commit."""
+    source = REPO
+    try:
+        with open(os.path.join(build, "CMakeCache.txt")) as cache:
+            for line in cache:
+                if line.startswith("CMAKE_HOME_DIRECTORY:"):
+                    source = line.split("=", 1)[1].strip()
+    except OSError:
+        pass
+    try:
+        head = subprocess.run(["git", "-C", source, "rev-parse", "--short", "HEAD"],
+                              capture_output=True, text=True, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", source, "status", "--porcelain", "--", "source",
+                                "include", "CMakeLists.txt"],
+                               capture_output=True, text=True).stdout.strip()
+        head += " (source modified)" if dirty else ""
+    except (OSError, subprocess.CalledProcessError):
+        head = "unknown commit"
+    return source, "%s at %s" % (head, source)
+
+
+def run_case(binary, prm_text, directory, ranks, reuse=False):
+    """Run viscofilm on @p ranks ranks with prm_text (its Output/Directory must
+    be @p directory) and return wall time [s], peak memory per rank [MiB] and
+    the log. With reuse, a finished run in directory (run.log with the timer
+    table) is read instead of run again."""
+    os.makedirs(directory, exist_ok=True)
+    log_file = os.path.join(directory, "run.log")
+    if not (reuse and os.path.exists(log_file) and "Total wallclock" in open(log_file).read()):
+        prm = os.path.join(directory, "case.prm")
+        with open(prm, "w") as f:
+            f.write(prm_text)
+        start = time.time()
+        result = subprocess.run(["mpirun", "-np", str(ranks), binary, prm],
+                                capture_output=True, text=True, env=mpi_environment())
+        wall = time.time() - start
+        with open(log_file, "w") as f:
+            f.write(result.stdout + result.stderr + "\nbenchmark wall time: %.3f s\n" % wall)
+        if result.returncode != 0:
+            die("the run in %s failed:\n%s" % (directory, result.stderr[-2000:]))
+    text = open(log_file).read()
+    wall = float(re.search(r"benchmark wall time: ([0-9.]+) s", text).group(1))
+    peak = re.search(r"Peak memory \(VmHWM\): ([0-9.]+) MiB on the largest rank", text)
+    return {"wall": wall, "peak_mib": float(peak.group(1)) if peak else float("nan"),
+            "log": text}
+
+
+def timer_section(log_text, section):
+    """Wall time [s] of a TimerOutput section in a run's log (0 if absent)."""
+    match = re.search(r"^\| %s\s*\|\s*\d+\s*\|\s*([0-9.e+-]+)s" % re.escape(section),
+                      log_text, re.MULTILINE)
+    return float(match.group(1)) if match else 0.0
+
+
+def read_csv(path):
+    """Rows of a viscofilm CSV file as dicts of floats."""
+    with open(path) as f:
+        return [{key: float(value) for key, value in row.items()} for row in csv.DictReader(f)]
