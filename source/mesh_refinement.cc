@@ -4,6 +4,7 @@
 
 #include <viscofilm/input.h>
 #include <viscofilm/mesh_refinement.h>
+#include <viscofilm/stokes.h>
 #include <viscofilm/volume_fraction.h>
 
 #include <algorithm>
@@ -40,6 +41,21 @@ namespace viscofilm
                       "its Q2 nodes) by more than this, and coarsened where by "
                       "less than a quarter of it. > 0; 0.02 is a fifth of the "
                       "biofilm's φ = 0.1.");
+    prm.declare_entry("Indicator",
+                      "interface and velocity",
+                      Patterns::Selection("interface|interface and velocity"),
+                      "interface: refine where φ varies (Refinement threshold) "
+                      "only. interface and velocity: also where Kelly's "
+                      "indicator of the velocity error exceeds Velocity "
+                      "threshold × max|u| (the flow around the biofilm and at "
+                      "the walls).");
+    prm.declare_entry("Velocity threshold",
+                      "0.002",
+                      Patterns::Double(0),
+                      "With Indicator = interface and velocity: a cell is "
+                      "refined where Kelly's velocity indicator exceeds this "
+                      "times max|u|, and may be coarsened where it is below a "
+                      "quarter of it. > 0.");
     prm.leave_subsection();
   }
 
@@ -54,10 +70,14 @@ namespace viscofilm
     min_level = prm.get_integer("Minimum level");
     max_level = prm.get_integer("Maximum level");
     threshold = prm.get_double("Refinement threshold");
+    velocity_indicator = prm.get("Indicator") == "interface and velocity";
+    velocity_threshold = prm.get_double("Velocity threshold");
     prm.leave_subsection();
     if (!adaptive)
       return;
     check_input(threshold > 0, "Mesh refinement/Refinement threshold must be > 0, got 0");
+    check_input(velocity_threshold > 0,
+                "Mesh refinement/Velocity threshold must be > 0, got 0");
     check_input(min_level <= initial_level && initial_level <= max_level,
                 "Mesh refinement/Minimum level (" + std::to_string(min_level) +
                   ") <= Geometry/Initial global refinement (" +
@@ -69,8 +89,15 @@ namespace viscofilm
 
   bool
   MeshRefinement::flag_cells(parallel::distributed::Triangulation<2> &triangulation,
-                             const VolumeFraction &volume_fraction) const
+                             const VolumeFraction &volume_fraction,
+                             const StokesSolver &  stokes) const
   {
+    // Velocity part: off before the first Stokes solve (u = 0).
+    const double  max_velocity = velocity_indicator ? stokes.max_velocity() : 0;
+    Vector<float> velocity_error;
+    if (max_velocity > 0)
+      velocity_error = stokes.velocity_error_indicator();
+
     const DoFHandler<2> &dofs = volume_fraction.dof_handler();
     const Quadrature<2>  nodes(dofs.get_fe().get_unit_support_points());
     FEValues<2>          fe_values(dofs.get_fe(), nodes, update_values);
@@ -82,14 +109,20 @@ namespace viscofilm
           fe_values.reinit(cell);
           fe_values.get_function_values(volume_fraction.solution(), phi);
           const auto [low, high] = std::minmax_element(phi.begin(), phi.end());
-          const double variation = *high - *low;
+          // Both measures relative to their threshold: > 1 refine, < 1/4
+          // coarsen.
+          double need = (*high - *low) / threshold;
+          if (max_velocity > 0)
+            need = std::max(need,
+                            velocity_error[cell->active_cell_index()] /
+                              (velocity_threshold * max_velocity));
           const unsigned int level = cell->level();
-          if (variation > threshold && level < max_level)
+          if (need > 1 && level < max_level)
             {
               cell->set_refine_flag();
               ++n_flagged;
             }
-          else if (variation < threshold / 4 && level > min_level)
+          else if (need < 0.25 && level > min_level)
             {
               cell->set_coarsen_flag();
               ++n_flagged;

@@ -73,7 +73,7 @@ namespace viscofilm
   Problem::refine_mesh()
   {
     TimerOutput::Scope t(*computing_timer, "refine mesh");
-    if (!parameters.mesh_refinement.flag_cells(triangulation, volume_fraction))
+    if (!parameters.mesh_refinement.flag_cells(triangulation, volume_fraction, stokes))
       return false;
     triangulation.prepare_coarsening_and_refinement();
     stokes.prepare_for_refinement();

@@ -15,6 +15,7 @@
 #include <deal.II/lac/block_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
+#include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <viscofilm/input.h>
@@ -805,5 +806,19 @@ namespace viscofilm
             max_speed = std::max(max_speed, u.norm());
         }
     return Utilities::MPI::max(max_speed, mpi_communicator);
+  }
+
+
+  Vector<float>
+  StokesSolver::velocity_error_indicator() const
+  {
+    Vector<float> indicator(triangulation.n_active_cells());
+    KellyErrorEstimator<2>::estimate(dofs,
+                                     QGauss<1>(fe.degree + 1),
+                                     {},
+                                     current_solution,
+                                     indicator,
+                                     fe.component_mask(FEValuesExtractors::Vector(0)));
+    return indicator;
   }
 } // namespace viscofilm

@@ -20,8 +20,9 @@ Modes
                solution.xdmf (needs h5py), numdiff the listing.
 
 In modes run and convergence, --bound "file.csv:column<value" (or >) must hold
-in every row of the run(s): a check against a stated limit, whatever the
-reference says.
+in every row of the run(s), and "file.csv:max(column)<value" (or sum) for the
+largest value or the sum over the rows: a check against a stated limit,
+whatever the reference says.
 
 Set VISCOFILM_BLESS=1 to write the reference instead of comparing (only after
 checking the output against the analytic answer by hand).
@@ -110,17 +111,25 @@ def compare(opts, text, workdir):
 
 
 def check_bounds(opts, directory):
+    """Each bound holds at every row, or, for max(column) and sum(column), for
+    the largest value or the sum over the rows."""
     for bound in opts.bound:
-        match = re.fullmatch(r"(.+):(\w+)([<>])(.+)", bound)
+        match = re.fullmatch(r"(.+):(\w+|max\(\w+\)|sum\(\w+\))([<>])(.+)", bound)
         if not match:
             fail("bad --bound " + bound)
         filename, column, relation, limit = match.groups()
-        for row in read_csv(os.path.join(directory, filename)):
-            value = float(row[column])
+        rows = read_csv(os.path.join(directory, filename))
+        reduction = re.fullmatch(r"(max|sum)\((\w+)\)", column)
+        if reduction:
+            values = [float(row[reduction.group(2)]) for row in rows]
+            value = max(values) if reduction.group(1) == "max" else sum(values)
+            checks = [(value, "over all rows")]
+        else:
+            checks = [(float(row[column]), "at step " + row.get("step", "?")) for row in rows]
+        for value, where in checks:
             if not (value < float(limit) if relation == "<" else value > float(limit)):
-                fail("%s: %s = %s at step %s violates %s %s %s"
-                     % (filename, column, row[column], row.get("step", "?"),
-                        column, relation, limit))
+                fail("%s: %s = %s %s violates %s %s %s"
+                     % (filename, column, value, where, column, relation, limit))
         print("bound holds: " + bound)
 
 

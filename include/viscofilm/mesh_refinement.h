@@ -19,6 +19,7 @@ namespace viscofilm
 {
   using namespace dealii;
 
+  class StokesSolver;
   class VolumeFraction;
 
   class MeshRefinement
@@ -32,18 +33,22 @@ namespace viscofilm
     parse_parameters(ParameterHandler &prm, const unsigned int initial_level);
 
     /// Flag cells where φ varies by more than the threshold across the cell
-    /// (the interface) for refinement, and those where it varies by less than
-    /// a quarter of it for coarsening, within the level bounds. Returns
-    /// whether any cell was flagged (collective).
+    /// (the interface) or, with the velocity indicator, where the velocity
+    /// error indicator exceeds its threshold, for refinement; those where
+    /// both are below a quarter of their thresholds for coarsening; within
+    /// the level bounds. Returns whether any cell was flagged (collective).
     bool
     flag_cells(parallel::distributed::Triangulation<2> &triangulation,
-               const VolumeFraction &                   volume_fraction) const;
+               const VolumeFraction &                   volume_fraction,
+               const StokesSolver &                     stokes) const;
 
     bool         adaptive  = false;
     unsigned int interval  = 10;
     unsigned int min_level = 0;
     unsigned int max_level = 0;
     double       threshold = 0.02;
+    bool         velocity_indicator = true;
+    double       velocity_threshold = 0.002;
   };
 
 

@@ -153,6 +153,12 @@ namespace viscofilm
     double
     max_velocity() const;
 
+    /// Kelly's indicator of the velocity per active cell (zero on cells not
+    /// owned here): (h/24 Σ_faces ∫ |[∂u/∂n]|²)^½, the jump of the velocity
+    /// gradient across the faces, of the size of the velocity error there.
+    Vector<float>
+    velocity_error_indicator() const;
+
     /// Add velocity, pressure and the derived divergence (∇·u), vorticity
     /// (∂v/∂x − ∂u/∂y) and inertia (|u·∇u|) to @p data_out.
     void
