@@ -34,28 +34,28 @@ namespace viscofilm
                       Patterns::Integer(0, 12),
                       "Finest refinement level; >= Geometry/Initial global "
                       "refinement. 7 gives Δx = 1/128 at the interface.");
-    prm.declare_entry("Refinement threshold",
-                      "0.02",
-                      Patterns::Double(0),
-                      "A cell is refined where φ varies across it (max − min at "
-                      "its Q2 nodes) by more than this, and coarsened where by "
-                      "less than a quarter of it. > 0; 0.02 is a fifth of the "
-                      "biofilm's φ = 0.1.");
     prm.declare_entry("Indicator",
-                      "interface and velocity",
-                      Patterns::Selection("interface|interface and velocity"),
-                      "interface: refine where φ varies (Refinement threshold) "
-                      "only. interface and velocity: also where Kelly's "
-                      "indicator of the velocity error exceeds Velocity "
-                      "threshold × max|u| (the flow around the biofilm and at "
-                      "the walls).");
+                      "biofilm, velocity",
+                      Patterns::MultipleSelection("interface|biofilm|velocity"),
+                      "What the mesh resolves, one or more of: interface (φ "
+                      "varies across the cell by more than Refinement "
+                      "threshold), biofilm (the interface and the cells where "
+                      "φ exceeds Refinement threshold: the elastic stress lives "
+                      "there), velocity (Kelly's indicator of the velocity error "
+                      "exceeds Velocity threshold × max|u|: the flow around the "
+                      "biofilm and at the walls).");
+    prm.declare_entry("Refinement threshold",
+                      "0.005",
+                      Patterns::Double(0),
+                      "The φ threshold of the interface and biofilm indicators, "
+                      "> 0. 0.005 is a twentieth of the biofilm's φ = 0.1; at "
+                      "viscosity ratio 500 it already makes the viscosity 3.5 "
+                      "times the water's.");
     prm.declare_entry("Velocity threshold",
                       "0.002",
                       Patterns::Double(0),
-                      "With Indicator = interface and velocity: a cell is "
-                      "refined where Kelly's velocity indicator exceeds this "
-                      "times max|u|, and may be coarsened where it is below a "
-                      "quarter of it. > 0.");
+                      "The threshold of the velocity indicator, relative to "
+                      "max|u|. > 0.");
     prm.leave_subsection();
   }
 
@@ -70,11 +70,21 @@ namespace viscofilm
     min_level = prm.get_integer("Minimum level");
     max_level = prm.get_integer("Maximum level");
     threshold = prm.get_double("Refinement threshold");
-    velocity_indicator = prm.get("Indicator") == "interface and velocity";
-    velocity_threshold = prm.get_double("Velocity threshold");
+    const std::vector<std::string> indicators =
+      Utilities::split_string_list(prm.get("Indicator"));
+    const auto chosen = [&](const std::string &name) {
+      return std::find(indicators.begin(), indicators.end(), name) != indicators.end();
+    };
+    interface_indicator = chosen("interface");
+    biofilm_indicator   = chosen("biofilm");
+    velocity_indicator  = chosen("velocity");
+    velocity_threshold  = prm.get_double("Velocity threshold");
     prm.leave_subsection();
     if (!adaptive)
       return;
+    check_input(interface_indicator || biofilm_indicator || velocity_indicator,
+                "Mesh refinement/Indicator must name one or more of interface, "
+                "biofilm, velocity; got nothing");
     check_input(threshold > 0, "Mesh refinement/Refinement threshold must be > 0, got 0");
     check_input(velocity_threshold > 0,
                 "Mesh refinement/Velocity threshold must be > 0, got 0");
@@ -90,7 +100,8 @@ namespace viscofilm
   bool
   MeshRefinement::flag_cells(parallel::distributed::Triangulation<2> &triangulation,
                              const VolumeFraction &volume_fraction,
-                             const StokesSolver &  stokes) const
+                             const StokesSolver &  stokes,
+                             const bool            coarsen) const
   {
     // Velocity part: off before the first Stokes solve (u = 0).
     const double  max_velocity = velocity_indicator ? stokes.max_velocity() : 0;
@@ -109,9 +120,13 @@ namespace viscofilm
           fe_values.reinit(cell);
           fe_values.get_function_values(volume_fraction.solution(), phi);
           const auto [low, high] = std::minmax_element(phi.begin(), phi.end());
-          // Both measures relative to their threshold: > 1 refine, < 1/4
-          // coarsen.
-          double need = (*high - *low) / threshold;
+          // Each measure relative to its threshold; the largest counts:
+          // > 1 refine, < 1/4 coarsen.
+          double need = 0;
+          if (interface_indicator)
+            need = (*high - *low) / threshold;
+          if (biofilm_indicator)
+            need = std::max({need, (*high - *low) / threshold, *high / threshold});
           if (max_velocity > 0)
             need = std::max(need,
                             velocity_error[cell->active_cell_index()] /
@@ -122,7 +137,7 @@ namespace viscofilm
               cell->set_refine_flag();
               ++n_flagged;
             }
-          else if (need < 0.25 && level > min_level)
+          else if (coarsen && need < 0.25 && level > min_level)
             {
               cell->set_coarsen_flag();
               ++n_flagged;

@@ -19,10 +19,11 @@ namespace viscofilm
     , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
     , computing_timer(
         std::make_unique<TimerOutput>(comm, pcout, TimerOutput::never, TimerOutput::wall_times))
+    // Only the smoothing p4est's 2:1 balance does anyway: deal.II's other
+    // smoothing flags (island elimination) act on each rank's view of the
+    // mesh and made the adapted mesh depend on the number of ranks.
     , triangulation(comm,
-                    Triangulation<2>::MeshSmoothing(
-                      Triangulation<2>::smoothing_on_refinement |
-                      Triangulation<2>::smoothing_on_coarsening),
+                    Triangulation<2>::limit_level_difference_at_vertices,
                     parallel::distributed::Triangulation<2>::default_setting)
     , stokes(triangulation,
              parameters.stokes_solver,
@@ -70,10 +71,13 @@ namespace viscofilm
 
 
   bool
-  Problem::refine_mesh()
+  Problem::refine_mesh(const bool coarsen)
   {
     TimerOutput::Scope t(*computing_timer, "refine mesh");
-    if (!parameters.mesh_refinement.flag_cells(triangulation, volume_fraction, stokes))
+    if (!parameters.mesh_refinement.flag_cells(triangulation,
+                                               volume_fraction,
+                                               stokes,
+                                               coarsen))
       return false;
     triangulation.prepare_coarsening_and_refinement();
     stokes.prepare_for_refinement();
@@ -137,27 +141,32 @@ namespace viscofilm
   Problem::set_initial_conditions()
   {
     // u = 0, p = 0 are the solver's initial state; φ from the input,
-    // softened (eq. 2.50); τ = 0.
+    // softened (eq. 2.50); τ = 0. An adaptive mesh must resolve both the
+    // input φ and the softened one (whose tail carries a viscosity well
+    // above the water's at large viscosity ratios): refine for the input φ
+    // until it is resolved, soften, refine for the result and start again
+    // from the input φ, until softening asks for no more cells. Only
+    // refinement, so that this ends (at the maximum level at the latest).
     const Function<2> &initial_phi =
       parameters.initial_conditions.volume_fraction.function();
-    volume_fraction.interpolate(initial_phi);
-    // Resolve the initial interface: refine, and interpolate φ anew.
-    if (parameters.mesh_refinement.adaptive)
+    const bool adaptive = parameters.mesh_refinement.adaptive;
+    for (bool softened = false; !softened;)
       {
-        for (unsigned int cycle = parameters.geometry.initial_refinement;
-             cycle < parameters.mesh_refinement.max_level && refine_mesh();
-             ++cycle)
-          volume_fraction.interpolate(initial_phi);
-        pcout << "Adapted mesh: " << triangulation.n_global_active_cells()
-              << " cells, " << stokes.n_dofs() << " Stokes dofs, smallest Δx = "
-              << min_cell_size << std::endl;
+        volume_fraction.interpolate(initial_phi);
+        if (adaptive && refine_mesh(false))
+          continue;
+        {
+          TimerOutput::Scope t(*computing_timer, "softening");
+          volume_fraction.soften(parameters.model.diffusion,
+                                 parameters.initial_conditions.softening_steps,
+                                 parameters.initial_conditions.softening_time_step);
+        }
+        softened = !(adaptive && refine_mesh(false));
       }
-    {
-      TimerOutput::Scope t(*computing_timer, "softening");
-      volume_fraction.soften(parameters.model.diffusion,
-                             parameters.initial_conditions.softening_steps,
-                             parameters.initial_conditions.softening_time_step);
-    }
+    if (adaptive)
+      pcout << "Adapted mesh: " << triangulation.n_global_active_cells()
+            << " cells, " << stokes.n_dofs() << " Stokes dofs, smallest Δx = "
+            << min_cell_size << std::endl;
     parameters.initial_conditions.stress.function().set_time(0);
     stress.set_initial_conditions(parameters.initial_conditions.stress.function());
     stokes.invalidate_matrix();

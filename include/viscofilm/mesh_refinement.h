@@ -32,22 +32,25 @@ namespace viscofilm
     void
     parse_parameters(ParameterHandler &prm, const unsigned int initial_level);
 
-    /// Flag cells where φ varies by more than the threshold across the cell
-    /// (the interface) or, with the velocity indicator, where the velocity
-    /// error indicator exceeds its threshold, for refinement; those where
-    /// both are below a quarter of their thresholds for coarsening; within
+    /// Flag for refinement the cells where a chosen indicator exceeds its
+    /// threshold: φ's variation across the cell (interface), also φ itself
+    /// (biofilm), the velocity error indicator (velocity); for coarsening
+    /// those where all are below a quarter of it (if @p coarsen); within
     /// the level bounds. Returns whether any cell was flagged (collective).
     bool
     flag_cells(parallel::distributed::Triangulation<2> &triangulation,
                const VolumeFraction &                   volume_fraction,
-               const StokesSolver &                     stokes) const;
+               const StokesSolver &                     stokes,
+               const bool                               coarsen) const;
 
     bool         adaptive  = false;
     unsigned int interval  = 10;
     unsigned int min_level = 0;
     unsigned int max_level = 0;
-    double       threshold = 0.02;
-    bool         velocity_indicator = true;
+    double       threshold = 0.005;
+    bool         interface_indicator = false;
+    bool         biofilm_indicator   = true;
+    bool         velocity_indicator  = true;
     double       velocity_threshold = 0.002;
   };
 

@@ -52,10 +52,10 @@ namespace viscofilm
     make_grid();
     void
     setup_dofs();
-    /// Adapt the mesh to the biofilm interface, carrying u, p, c and φ
-    /// over; false if no cell was flagged.
+    /// Adapt the mesh (MeshRefinement), carrying u, p, c and φ over; false
+    /// if no cell was flagged. Without @p coarsen cells are only refined.
     bool
-    refine_mesh();
+    refine_mesh(const bool coarsen = true);
     /// After any change of the mesh: caches that depend on it.
     void
     mesh_changed();
