@@ -45,8 +45,8 @@ namespace viscofilm
    * values of ghost cells); the others go to
    * Utilities::MPI::RemotePointEvaluation, which finds them on the rank that
    * owns them. (deal.II 9.4's search alone costs O(all cells) per point on a
-   * cell face, which made the feet 70 % of a run at Δx = 1/256.) A point on
-   * a face or vertex gets the mean over all cells sharing it (so a
+   * cell face, which made the feet 70 % of a time step at Δx = 1/256.) A
+   * point on a face or vertex gets the mean over all cells sharing it (so a
    * discontinuous field is averaged), on either path.
    */
   class PointEvaluator
