@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <optional>
-#include <set>
 #include <sstream>
 
 namespace viscofilm
@@ -31,9 +30,10 @@ namespace viscofilm
 
 
   PointEvaluator::PointEvaluator(
-    const parallel::distributed::Triangulation<2> &triangulation)
+    const parallel::distributed::Triangulation<2> &triangulation,
+    const unsigned int                             max_walk_steps)
     : triangulation(triangulation)
-    , cache(triangulation, mapping())
+    , max_walk_steps(max_walk_steps)
     , remote(unit_tolerance)
   {}
 
@@ -44,8 +44,7 @@ namespace viscofilm
   {
     // Feet lie a few cells from their nodes; a longer walk is left to the
     // global search.
-    const unsigned int max_steps = 64;
-    for (unsigned int step = 0; step < max_steps && !cell->is_artificial(); ++step)
+    for (unsigned int step = 0; step < max_walk_steps && !cell->is_artificial(); ++step)
       {
         const Point<2> unit = mapping().transform_real_to_unit_cell(cell, p);
         if (GeometryInfo<2>::distance_to_unit_cell(unit) < unit_tolerance)
@@ -92,55 +91,17 @@ namespace viscofilm
     n_points = points.size();
     local.clear();
     remote_points.clear();
-    const auto &            vertex_to_cells = cache.get_vertex_to_cell_map();
-    std::vector<LocalPoint> sharing;
     for (unsigned int i = 0; i < points.size(); ++i)
-      {
-        const auto found = walk(hints[i], points[i]);
-        bool       here  = found.has_value();
-        sharing.clear();
-        if (here)
-          {
-            const auto &[cell, unit] = *found;
-            hints[i]                 = cell;
-            bool on_cell_boundary    = false;
-            for (unsigned int d = 0; d < 2; ++d)
-              on_cell_boundary = on_cell_boundary || unit[d] < unit_tolerance ||
-                                 unit[d] > 1 - unit_tolerance;
-            if (!on_cell_boundary)
-              sharing.push_back({cell, unit, i, 1.0});
-            else
-              {
-                // Every cell containing the point has one of cell's vertices
-                // (also across hanging nodes).
-                std::set<Triangulation<2>::active_cell_iterator> candidates;
-                for (const unsigned int v : cell->vertex_indices())
-                  {
-                    const auto &around = vertex_to_cells[cell->vertex_index(v)];
-                    candidates.insert(around.begin(), around.end());
-                  }
-                for (const auto &candidate : candidates)
-                  {
-                    const Point<2> u =
-                      mapping().transform_real_to_unit_cell(candidate, points[i]);
-                    if (GeometryInfo<2>::distance_to_unit_cell(u) >= unit_tolerance)
-                      continue;
-                    if (candidate->is_artificial())
-                      {
-                        here = false;
-                        break;
-                      }
-                    sharing.push_back({candidate, u, i, 0.0});
-                  }
-                for (LocalPoint &s : sharing)
-                  s.weight = 1.0 / sharing.size();
-              }
-          }
-        if (here)
-          local.insert(local.end(), sharing.begin(), sharing.end());
-        else
-          remote_points.push_back(i);
-      }
+      if (const auto found = walk(hints[i], points[i]))
+        {
+          // The first cell on the walk that holds the point, even if the
+          // point is on a face it shares: a discontinuous field is taken
+          // from the side the walk came from, not averaged across the face.
+          hints[i] = found->first;
+          local.push_back({found->first, found->second, i});
+        }
+      else
+        remote_points.push_back(i);
     std::sort(local.begin(), local.end(), [](const LocalPoint &a, const LocalPoint &b) {
       return a.cell < b.cell;
     });
@@ -174,8 +135,7 @@ namespace viscofilm
         values.resize(unit_points.size());
         evaluate_cell(begin->cell, make_array_view(unit_points), make_array_view(values));
         for (auto point = begin; point != end; ++point)
-          for (unsigned int k = 0; k < n; ++k)
-            result[point->point][k] += point->weight * values[point - begin][k];
+          result[point->point] = values[point - begin];
         begin = end;
       }
     if (!any_remote)
@@ -275,6 +235,16 @@ namespace viscofilm
                       Patterns::Integer(1, 1000),
                       "A foot not found within this many Newton iterations "
                       "stops the run with the point and its residual.");
+    prm.declare_entry("Maximum walk steps",
+                      "64",
+                      Patterns::Integer(1),
+                      "A point (a midpoint or a foot) is searched by walking "
+                      "across at most this many cells from its node's cell; "
+                      "one not reached, or behind the ghost layer, is found by "
+                      "deal.II's global search instead (O(cells) per point on "
+                      "a face, and a point found on a face there gets the mean "
+                      "of the cells sharing it). Raise it for feet more than "
+                      "this many cells away (CFL numbers far above 1).");
     prm.leave_subsection();
   }
 
@@ -285,6 +255,7 @@ namespace viscofilm
     prm.enter_subsection("Departure feet");
     newton_tolerance      = prm.get_double("Newton tolerance");
     max_newton_iterations = prm.get_integer("Maximum Newton iterations");
+    max_walk_steps        = prm.get_integer("Maximum walk steps");
     prm.leave_subsection();
     check_input(newton_tolerance > 0,
                 "Departure feet/Newton tolerance must be > 0, got 0");
@@ -298,7 +269,7 @@ namespace viscofilm
     : parameters(parameters)
     , geometry(geometry)
     , triangulation(triangulation)
-    , evaluator(triangulation)
+    , evaluator(triangulation, parameters.max_walk_steps)
   {}
 
 
@@ -415,7 +386,10 @@ namespace viscofilm
         active.swap(still_active);
       }
 
-    evaluator.reinit(feet, hints);
+    // Walk to each foot from its point's own cell: a foot on that cell's
+    // boundary (a stagnant node's) takes that cell's values (upwind).
+    std::vector<Triangulation<2>::active_cell_iterator> own_cells(cells);
+    evaluator.reinit(feet, own_cells);
 
     unsigned int n_left_cell = 0;
     for (unsigned int i = 0; i < points.size(); ++i)

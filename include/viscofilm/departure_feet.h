@@ -11,8 +11,6 @@
 
 #include <deal.II/distributed/tria.h>
 
-#include <deal.II/grid/grid_tools_cache.h>
-
 #include <deal.II/dofs/dof_handler.h>
 
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
@@ -46,13 +44,19 @@ namespace viscofilm
    * Utilities::MPI::RemotePointEvaluation, which finds them on the rank that
    * owns them. (deal.II 9.4's search alone costs O(all cells) per point on a
    * cell face, which made the feet 70 % of a time step at Δx = 1/256.) A
-   * point on a face or vertex gets the mean over all cells sharing it (so a
-   * discontinuous field is averaged), on either path.
+   * point on a face or vertex takes the value of the first cell on the walk
+   * that holds it, i.e. of the hint cell if it holds the point: a
+   * discontinuous field is taken from the hint's side, never averaged. Only
+   * a point beyond the ghost layer that RemotePointEvaluation finds on a
+   * face gets the mean over the cells sharing it.
    */
   class PointEvaluator
   {
   public:
-    explicit PointEvaluator(const parallel::distributed::Triangulation<2> &triangulation);
+    /// A walk crosses at most @p max_walk_steps cells before the point is
+    /// left to the global search.
+    PointEvaluator(const parallel::distributed::Triangulation<2> &triangulation,
+                   const unsigned int                             max_walk_steps);
 
     /// Locate @p points; @p hints (one per point) become the cells found,
     /// good hints for points near these. Collective.
@@ -81,12 +85,11 @@ namespace viscofilm
     {
       Triangulation<2>::active_cell_iterator cell;
       Point<2>                               unit_point;
-      unsigned int                           point;  // index in reinit()'s points
-      double                                 weight; // 1 / cells sharing the point
+      unsigned int                           point; // index in reinit()'s points
     };
 
     const parallel::distributed::Triangulation<2> &triangulation;
-    GridTools::Cache<2>                            cache; // vertex → cells
+    const unsigned int                             max_walk_steps;
     std::vector<LocalPoint>                        local; // sorted by cell
     std::vector<unsigned int>                      remote_points;
     bool                                           any_remote = false; // on any rank
@@ -113,6 +116,7 @@ namespace viscofilm
 
       double       newton_tolerance      = 1e-10;
       unsigned int max_newton_iterations = 20;
+      unsigned int max_walk_steps        = 64;
     };
 
     /// Per time step, summed over all ranks and all point sets.
@@ -131,7 +135,8 @@ namespace viscofilm
      * The feet y of the points x: y = x − k u((x + y)/2), the implicit
      * midpoint rule along the characteristic, solved by Newton's method
      * (∇G = I + (k/2) ∇u) from y = x. @p cells are the cells the points
-     * came from (to count the feet that left them). u is the velocity part
+     * came from: a foot in (or on the boundary of) its point's cell is
+     * evaluated there, upwind (and the feet that left them are counted). u is the velocity part
      * of @p stokes_solution (ghosted) on @p stokes_dofs. A foot outside the
      * channel is moved to the nearest boundary point. at_feet() then
      * evaluates fields at the feet. Collective.
