@@ -36,8 +36,9 @@ namespace viscofilm
                       "true",
                       Patterns::Bool(),
                       "true: the Oldroyd-B / Johnson–Segalman stress τ acts on "
-                      "the flow. false: τ ≡ 0 (a Newtonian mixture of viscosity "
-                      "η(φ)); no departure feet for the stress, no Picard loop.");
+                      "the flow. false: τ ≡ 0 everywhere (a Newtonian mixture of "
+                      "viscosity η(φ); Initial conditions/Stress is ignored); no "
+                      "departure feet for the stress, no Picard loop.");
     prm.leave_subsection();
   }
 

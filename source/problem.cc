@@ -245,12 +245,15 @@ namespace viscofilm
           break;
         {
           TimerOutput::Scope t(*computing_timer, "stress update");
-          stress.update(stokes, volume_fraction, k);
+          report.picard_stress_change = stress.update(stokes, volume_fraction, k);
         }
+        report.picard_velocity_change = stokes.velocity_relative_change(previous);
         // The first iterate is compared with u^n: iterate at least twice so
-        // that the updated stress has acted on the flow once.
-        if (l > 1 &&
-            stokes.relative_change(previous) < parameters.time_stepping.picard_tolerance)
+        // that the updated stress has acted on the flow once. Both u and τ
+        // must have settled, each relative to its own size.
+        const double tolerance = parameters.time_stepping.picard_tolerance;
+        if (l > 1 && report.picard_velocity_change < tolerance &&
+            report.picard_stress_change < tolerance)
           break;
         report.picard_converged = (l < max_picard);
       }
@@ -286,6 +289,8 @@ namespace viscofilm
     statistics.set("stokes_iterations", report.total_stokes_iterations);
     statistics.set("picard_iterations", report.picard_iterations);
     statistics.set("picard_converged", report.picard_converged);
+    statistics.set("picard_velocity_change", report.picard_velocity_change);
+    statistics.set("picard_stress_change", report.picard_stress_change);
     statistics.set("transport_iterations", report.transport_iterations);
     statistics.set("max_velocity", max_velocity);
     statistics.set("volume_fraction_integral", volume_fraction.integral());
@@ -315,6 +320,7 @@ namespace viscofilm
     statistics.set("feet_left_domain", feet.n_left_domain);
     statistics.set("feet_remote", stress.n_remote_feet());
     statistics.set("feet_positivity_fixes", stress.n_positivity_fixes());
+    statistics.set("conformation_repairs", stress.n_positivity_repairs());
     statistics.write_row();
   }
 

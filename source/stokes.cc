@@ -533,24 +533,6 @@ namespace viscofilm
   }
 
 
-  double
-  StokesSolver::relative_change(
-    const TrilinosWrappers::MPI::BlockVector &previous) const
-  {
-    TrilinosWrappers::MPI::BlockVector now(owned_partitioning, mpi_communicator);
-    TrilinosWrappers::MPI::BlockVector difference(owned_partitioning, mpi_communicator);
-    now        = current_solution;
-    difference = previous;
-    difference.sadd(-1.0, now);
-    // One relative measure for both blocks, so that a pressure that is zero
-    // up to round-off (as in homogeneous flows) cannot stall the loop.
-    const double size = now.block(0).l2_norm() + now.block(1).l2_norm();
-    const double change =
-      difference.block(0).l2_norm() + difference.block(1).l2_norm();
-    return size > 0 ? change / size : change;
-  }
-
-
   void
   StokesSolver::build_preconditioner()
   {
@@ -820,5 +802,33 @@ namespace viscofilm
                                      indicator,
                                      fe.component_mask(FEValuesExtractors::Vector(0)));
     return indicator;
+  }
+
+
+  double
+  StokesSolver::velocity_relative_change(
+    const TrilinosWrappers::MPI::BlockVector &previous) const
+  {
+    // ‖u − u_prev‖_L2 / ‖u‖_L2: the velocity alone, as the pressure's size
+    // (which grows with the viscosity) says nothing about the flow's change.
+    FEValues<2> fe_values(fe, quadrature(), update_values | update_JxW_values);
+    const FEValuesExtractors::Vector velocities(0);
+    std::vector<Tensor<1, 2>>        now(fe_values.n_quadrature_points);
+    std::vector<Tensor<1, 2>>        before(fe_values.n_quadrature_points);
+    double                           squares[2] = {0, 0}; // change, size
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[velocities].get_function_values(current_solution, now);
+          fe_values[velocities].get_function_values(previous, before);
+          for (unsigned int q = 0; q < now.size(); ++q)
+            {
+              squares[0] += (now[q] - before[q]).norm_square() * fe_values.JxW(q);
+              squares[1] += now[q].norm_square() * fe_values.JxW(q);
+            }
+        }
+    Utilities::MPI::sum(squares, mpi_communicator, squares);
+    return squares[1] > 0 ? std::sqrt(squares[0] / squares[1]) : std::sqrt(squares[0]);
   }
 } // namespace viscofilm

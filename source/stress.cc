@@ -84,6 +84,18 @@ namespace viscofilm
                       "positive definite, use the bilinear interpolant on the "
                       "Q1 sub-cell of the Q2 nodes instead (a convex "
                       "combination of nodal values, so positive definite).");
+    prm.declare_entry("Positivity floor",
+                      "1e-6",
+                      Patterns::Double(0),
+                      "c must stay positive definite (a > 0), but the Q2 "
+                      "interpolation at hanging nodes and onto refined cells "
+                      "has weights of -1/8 and can break it. A node whose "
+                      "smallest eigenvalue there falls below this times "
+                      "ηp/(a Wi) (c of the relaxed state) is raised to it, c "
+                      "+= (floor − λ_min) I (counted in statistics.csv as "
+                      "conformation_repairs). The update itself never goes below "
+                      "k/(Wi + k) times ηp/(a Wi). >= 0; 0 only guards λ_min > 0 "
+                      "to round-off.");
     prm.declare_entry("Deformation gradient",
                       "implicit Euler",
                       Patterns::Selection("implicit Euler|Cayley"),
@@ -104,6 +116,7 @@ namespace viscofilm
     discontinuous        = (prm.get("Element") == "discontinuous");
     positivity_safe_feet = prm.get_bool("Positivity safe feet");
     cayley               = (prm.get("Deformation gradient") == "Cayley");
+    positivity_floor     = prm.get_double("Positivity floor");
     prm.leave_subsection();
   }
 
@@ -186,18 +199,28 @@ namespace viscofilm
   {
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
                                               triangulation.get_communicator());
+    // Without elastic stress τ ≡ 0 (c = shift I) whatever the input says:
+    // nothing updates c then, so a non-zero τ0 would act on the flow for ever.
     Vector<double> tau(3);
     for (const Node &node : nodes)
       {
-        initial_stress.vector_value(node.position, tau);
+        // A discontinuous c takes its own cell's limit of τ0 on the cell's
+        // boundary, so that a τ0 jumping across a face is kept.
+        const Point<2> inside =
+          parameters.discontinuous ?
+            node.position + 1e-10 * (node.cell->center() - node.position) :
+            node.position;
+        if (model.viscoelastic)
+          initial_stress.vector_value(inside, tau);
         distributed[node.dofs[0]] = tau[0] + shift();
         distributed[node.dofs[1]] = tau[1];
         distributed[node.dofs[2]] = tau[2] + shift();
       }
     distributed.compress(VectorOperation::insert);
     hanging_node_constraints.distribute(distributed);
-    current = distributed;
-    old     = distributed;
+    current          = distributed;
+    old              = distributed;
+    transfer_repairs = 0; // of the unset c carried by the initial refinement
   }
 
 
@@ -321,7 +344,7 @@ namespace viscofilm
   }
 
 
-  void
+  double
   ElasticStress::update(const StokesSolver &  stokes,
                         const VolumeFraction &volume_fraction,
                         const double          time_step)
@@ -361,7 +384,72 @@ namespace viscofilm
     distributed.compress(VectorOperation::insert);
     // A continuous c is continuous at hanging nodes too.
     hanging_node_constraints.distribute(distributed);
-    current = distributed;
+    constraint_repairs = repair_positivity(distributed);
+    const TrilinosWrappers::MPI::Vector previous = current;
+    current                                      = distributed;
+    return relative_change(previous);
+  }
+
+
+  double
+  ElasticStress::relative_change(const TrilinosWrappers::MPI::Vector &previous) const
+  {
+    // ‖Δτ‖_L2 / ‖τ‖_L2 with the Frobenius norm; Δτ = Δc, but τ's own size,
+    // not c's (which includes the relaxed state shift·I), is the scale.
+    FEValues<2> fe_values(fe, stokes_quadrature, update_values | update_JxW_values);
+    std::vector<Vector<double>> now(stokes_quadrature.size(), Vector<double>(3));
+    std::vector<Vector<double>> before(stokes_quadrature.size(), Vector<double>(3));
+    const auto frobenius_square = [](const double xx, const double xy, const double yy) {
+      return xx * xx + 2 * xy * xy + yy * yy;
+    };
+    double squares[2] = {0, 0}; // change, size
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(current, now);
+          fe_values.get_function_values(previous, before);
+          for (unsigned int q = 0; q < now.size(); ++q)
+            {
+              squares[0] += frobenius_square(now[q][0] - before[q][0],
+                                             now[q][1] - before[q][1],
+                                             now[q][2] - before[q][2]) *
+                            fe_values.JxW(q);
+              squares[1] +=
+                frobenius_square(now[q][0] - shift(), now[q][1], now[q][2] - shift()) *
+                fe_values.JxW(q);
+            }
+        }
+    Utilities::MPI::sum(squares, triangulation.get_communicator(), squares);
+    return squares[1] > 0 ? std::sqrt(squares[0] / squares[1]) : std::sqrt(squares[0]);
+  }
+
+
+  unsigned int
+  ElasticStress::repair_positivity(TrilinosWrappers::MPI::Vector &distributed) const
+  {
+    // Nodes set by Q2 interpolation (hanging nodes, new nodes of refined
+    // cells) are weighted sums with a weight −1/8, not convex ones; raise
+    // their smallest eigenvalue to the floor, keeping the eigenvectors.
+    unsigned int repairs = 0;
+    if (shift() > 0)
+      {
+        const double floor = parameters.positivity_floor * shift();
+        for (const Node &node : nodes)
+          {
+            const double smallest = smallest_eigenvalue(distributed[node.dofs[0]],
+                                                        distributed[node.dofs[1]],
+                                                        distributed[node.dofs[2]]);
+            if (smallest < floor)
+              {
+                distributed[node.dofs[0]] += floor - smallest;
+                distributed[node.dofs[2]] += floor - smallest;
+                ++repairs;
+              }
+          }
+      }
+    distributed.compress(VectorOperation::insert);
+    return Utilities::MPI::sum(repairs, triangulation.get_communicator());
   }
 
 
@@ -393,6 +481,7 @@ namespace viscofilm
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
                                               triangulation.get_communicator());
     carrier.finish(dofs, distributed);
+    transfer_repairs += repair_positivity(distributed);
     current = distributed;
     old     = distributed;
   }
@@ -415,7 +504,8 @@ namespace viscofilm
   void
   ElasticStress::advance_time()
   {
-    old = current;
+    old              = current;
+    transfer_repairs = 0;
   }
 
 
@@ -436,6 +526,13 @@ namespace viscofilm
   ElasticStress::n_positivity_fixes() const
   {
     return positivity_fixes;
+  }
+
+
+  unsigned int
+  ElasticStress::n_positivity_repairs() const
+  {
+    return transfer_repairs + constraint_repairs;
   }
 
 

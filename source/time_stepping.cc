@@ -27,8 +27,11 @@ namespace viscofilm
     prm.declare_entry("Picard tolerance",
                       "1e-6",
                       Patterns::Double(0),
-                      "The Picard loop of a time step stops when the relative "
-                      "change (‖Δu‖ + ‖Δp‖)/(‖u‖ + ‖p‖) falls below this, > 0.");
+                      "The Picard loop of a time step stops when both relative "
+                      "changes from the previous iterate, ‖Δu‖/‖u‖ of the "
+                      "velocity and ‖Δτ‖/‖τ‖ of the elastic stress (L2 norms "
+                      "over the domain), fall below this (after two iterations "
+                      "at least), > 0.");
     prm.declare_entry("Maximum Picard iterations",
                       "10",
                       Patterns::Integer(1),

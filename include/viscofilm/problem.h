@@ -45,6 +45,9 @@ namespace viscofilm
       unsigned int total_stokes_iterations = 0;
       unsigned int picard_iterations       = 0;
       bool         picard_converged        = true;
+      // Relative L2 changes of u and τ in the last Picard iteration.
+      double       picard_velocity_change  = 0;
+      double       picard_stress_change    = 0;
       unsigned int transport_iterations    = 0;
     };
 

@@ -106,11 +106,6 @@ namespace viscofilm
     void
     trace_back(DepartureFeet &feet, const double time_step);
 
-    /// Relative change (‖Δu‖ + ‖Δp‖)/(‖u‖ + ‖p‖) from @p previous to the
-    /// current solution (discrete l2 norms), the Picard criterion.
-    double
-    relative_change(const TrilinosWrappers::MPI::BlockVector &previous) const;
-
     /// Assemble the right-hand side (and the matrix if invalidated).
     void
     assemble(const Coefficients &coefficients);
@@ -163,6 +158,11 @@ namespace viscofilm
     /// (∂v/∂x − ∂u/∂y) and inertia (|u·∇u|) to @p data_out.
     void
     add_output(DataOut<2> &data_out) const;
+
+    /// ‖u − u_prev‖_L2 / ‖u‖_L2 from the velocity of @p previous (ghosted)
+    /// to the current one: the Picard criterion on u.
+    double
+    velocity_relative_change(const TrilinosWrappers::MPI::BlockVector &previous) const;
 
   private:
     void

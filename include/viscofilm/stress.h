@@ -56,6 +56,9 @@ namespace viscofilm
       /// (I − kΦ/2)^{-1}(I + kΦ/2): second order, and exactly orthogonal in a
       /// rotation, so a co-rotating stress keeps its size.
       bool cayley = false;
+      /// Smallest eigenvalue of c, relative to ηp/(a Wi), that a node keeps
+      /// after Q2 interpolation at hanging nodes and onto refined cells.
+      double positivity_floor = 1e-6;
     };
 
     ElasticStress(const parallel::distributed::Triangulation<2> &triangulation,
@@ -67,7 +70,8 @@ namespace viscofilm
     void
     setup_dofs(const Quadrature<2> &quadrature);
 
-    /// c = τ0 + (ηp/(a Wi)) I at the nodes (τ0 = 0 in the thesis).
+    /// c = τ0 + (ηp/(a Wi)) I at the nodes (τ0 = 0 in the thesis; always
+    /// 0 without Model/Viscoelastic).
     void
     set_initial_conditions(const Function<2> &initial_stress);
 
@@ -79,7 +83,9 @@ namespace viscofilm
 
     /// MODEL.md §3 step 2b: c^{n+1} at every node from the current Stokes
     /// iterate, φ^n and c^n at the feet (closed form, eq. 3.40-3.44).
-    void
+    /// Returns ‖τ − τ_prev‖_L2 / ‖τ‖_L2 from the previous iterate, the
+    /// Picard criterion on the stress.
+    double
     update(const StokesSolver &stokes, const VolumeFraction &volume_fraction, const double time_step);
 
     /// τ at the quadrature points of @p cell (the Stokes right-hand side).
@@ -112,6 +118,11 @@ namespace viscofilm
     unsigned int
     n_positivity_fixes() const;
 
+    /// Nodes raised to Stress/Positivity floor in the last update() and
+    /// the mesh changes since the last advance_time().
+    unsigned int
+    n_positivity_repairs() const;
+
     /// Feet evaluated by another rank (summed over ranks) in the last
     /// trace_back().
     unsigned int
@@ -141,6 +152,16 @@ namespace viscofilm
       SymmetricTensor<2, 2>                   foot_conformation;
     };
 
+    /// ‖c − @p previous‖_L2 / ‖τ‖_L2 (Frobenius norms) for the current c.
+    double
+    relative_change(const TrilinosWrappers::MPI::Vector &previous) const;
+
+    /// Raise the smallest eigenvalue of c to Stress/Positivity floor at the
+    /// nodes of @p distributed below it (after Q2 interpolation); returns
+    /// their number over all ranks. Collective.
+    unsigned int
+    repair_positivity(TrilinosWrappers::MPI::Vector &distributed) const;
+
     /// ∇u and φ at every node, ∇u averaged over the node's cells.
     void
     nodal_fields(const StokesSolver &           stokes,
@@ -169,6 +190,8 @@ namespace viscofilm
     std::unique_ptr<DataPostprocessor<2>>      tau_postprocessor;
     unsigned int                               positivity_fixes = 0;
     unsigned int                               remote_feet      = 0;
+    unsigned int                               transfer_repairs   = 0;
+    unsigned int                               constraint_repairs = 0;
   };
 } // namespace viscofilm
 
