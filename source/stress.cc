@@ -94,8 +94,8 @@ namespace viscofilm
                       "ηp/(a Wi) (c of the relaxed state) is raised to it, c "
                       "+= (floor − λ_min) I (counted in statistics.csv as "
                       "conformation_repairs). The update itself never goes below "
-                      "k/(Wi + k) times ηp/(a Wi). >= 0; 0 only guards λ_min > 0 "
-                      "to round-off.");
+                      "k/(Wi + k) times ηp/(a Wi). >= 0 (0: only negative "
+                      "eigenvalues are raised, to 0).");
     prm.declare_entry("Deformation gradient",
                       "implicit Euler",
                       Patterns::Selection("implicit Euler|Cayley"),
