@@ -18,6 +18,12 @@ Modes
                --numdiff (the reference is the uninterrupted run).
   hdf5         run FILE.prm and list the datasets of every snapshot named in
                solution.xdmf (needs h5py), numdiff the listing.
+  fields       run FILE.prm and check the node values of the last snapshot
+               against --exact "dataset=expression in x, y" (dataset[i] for a
+               component; a Python expression) to --tolerance: at every corner
+               of every cell the value must be the limit of the expression
+               from inside that cell, so a field that jumps between cells must
+               be written with both one-sided values (needs h5py).
 
 In modes run and convergence, --bound "file.csv:column<value" (or >) must hold
 in every row of the run(s), and "file.csv:max(column)<value" (or sum) for the
@@ -261,10 +267,46 @@ def mode_hdf5(opts, workdir):
     compare(opts, "\n".join(lines) + "\n", workdir)
 
 
+def mode_fields(opts, workdir):
+    import h5py  # Debian's python3-h5py (and so numpy)
+    import numpy as np
+
+    prm = shutil.copy(opts.prm, workdir)
+    result = run_viscofilm(opts, [os.path.basename(prm)], workdir)
+    if result.returncode != 0:
+        fail("viscofilm exited with %d:\n%s" % (result.returncode, result.stderr))
+    directory = output_directory(workdir, prm)
+    with open(os.path.join(directory, "solution.xdmf")) as f:
+        last = re.findall(r"(solution-\d+\.h5):", f.read())[-1]
+    with h5py.File(os.path.join(directory, last), "r") as h5:
+        nodes, cells = h5["nodes"][()], h5["cells"][()].astype(int)
+        datasets = {name: h5[name][()] for name in h5.keys()}
+    # Each cell's corners, moved 1e-9 of the way to its centre: the exact
+    # field there is its limit from inside that cell.
+    corners = nodes[cells]
+    inside = corners + 1e-9 * (corners.mean(axis=1, keepdims=True) - corners)
+    for spec in opts.exact:
+        name, expression = spec.split("=", 1)
+        match = re.fullmatch(r"(\w+)(?:\[(\d)\])?", name.strip())
+        values = datasets[match.group(1)].reshape(len(nodes), -1)
+        values = values[:, int(match.group(2) or 0)][cells]
+        exact = np.vectorize(lambda x, y: eval(expression, dict(vars(math)), {"x": x, "y": y}),
+                             otypes=[float])(inside[..., 0], inside[..., 1])
+        error = np.abs(values - exact)
+        worst = np.unravel_index(np.argmax(error), error.shape)
+        if error[worst] > opts.tolerance:
+            fail("%s: %s = %.10g at the corner (%g, %g) of the cell around (%g, %g), "
+                 "exact %.10g" % (last, name, values[worst], *corners[worst],
+                                  *corners[worst[0]].mean(axis=0), exact[worst]))
+        print("%s: %s equals %s at every cell's corners to %.1e (tolerance %g)"
+              % (last, name, expression, error.max(), opts.tolerance))
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--mode", required=True,
-                        choices=["run", "convergence", "error", "restart", "hdf5"])
+                        choices=["run", "convergence", "error", "restart", "hdf5",
+                                 "fields"])
     parser.add_argument("--viscofilm", required=True)
     parser.add_argument("--mpiexec", default="mpirun")
     parser.add_argument("--mpiexec-flags", default="")
@@ -280,12 +322,14 @@ def main():
     parser.add_argument("--min-rates", default="")
     parser.add_argument("--timeout", type=float, default=600)
     parser.add_argument("--stop-after", default="4")
+    parser.add_argument("--exact", action="append", default=[])
+    parser.add_argument("--tolerance", type=float, default=0)
     opts = parser.parse_args()
 
     shutil.rmtree(opts.workdir, ignore_errors=True)
     os.makedirs(opts.workdir)
     {"run": mode_run, "convergence": mode_convergence, "error": mode_error,
-     "restart": mode_restart, "hdf5": mode_hdf5}[opts.mode](opts, opts.workdir)
+     "restart": mode_restart, "hdf5": mode_hdf5, "fields": mode_fields}[opts.mode](opts, opts.workdir)
     print("PASSED")
 
 
