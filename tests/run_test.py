@@ -15,7 +15,15 @@ Modes
   restart      run FILE.prm (which sets Checkpointing/Interval) to its end, and
                again stopped after --stop-after steps and resumed from its
                checkpoint: the --compare columns of both must agree to
-               --numdiff (the reference is the uninterrupted run).
+               --numdiff (the reference is the uninterrupted run). The
+               resumed run sets each --resume-set "Subsection/Name=value"
+               (entries that may change on resume). --interrupt-commit: leave
+               the checkpoint as a kill between the two renames of a commit
+               would (checkpoint.old whole, no checkpoint/, a checkpoint.new).
+  refused      run FILE.prm stopped after --stop-after steps, then resume it
+               once with each --resume-set changed: each resume must fail with
+               a non-zero exit status, leave statistics.csv as it was, and
+               print the messages in --reference (one per --resume-set).
   hdf5         run FILE.prm and list the datasets of every snapshot named in
                solution.xdmf (needs h5py), numdiff the listing.
   fields       run FILE.prm and check the node values of the last snapshot
@@ -68,9 +76,10 @@ def run_viscofilm(opts, args, workdir):
 
 
 def read_prm_setting(prm_text, name):
-    match = re.search(r"^\s*set\s+" + re.escape(name) + r"\s*=\s*(.*?)\s*(#.*)?$",
-                      prm_text, re.MULTILINE)
-    return match.group(1) if match else None
+    """The value of the last "set name = ..." (the one ParameterHandler keeps)."""
+    matches = re.findall(r"^\s*set\s+" + re.escape(name) + r"\s*=\s*(.*?)\s*(?:#.*)?$",
+                         prm_text, re.MULTILINE)
+    return matches[-1] if matches else None
 
 
 def output_directory(workdir, prm):
@@ -219,30 +228,70 @@ def mode_error(opts, workdir):
             + "\n", workdir)
 
 
-def mode_restart(opts, workdir):
-    with open(opts.prm) as f:
-        base = f.read()
-    steps = read_prm_setting(base, "Number of steps")
+def prm_setting(setting):
+    """'Subsection/Name=value' -> the parameter file lines that set it."""
+    path, value = setting.split("=", 1)
+    *subsections, name = path.split("/")
+    return ("".join("subsection %s\n" % s for s in subsections)
+            + "set %s = %s\n" % (name, value) + "end\n" * len(subsections))
 
-    def run(name, directory, n_steps, resume):
+
+def checkpointed_run(opts, workdir, base):
+    """run(name, directory, n_steps, resume, settings=[]) runs base with
+    those settings; it returns the result and fails unless expect_failure."""
+    def run(name, directory, n_steps, resume, settings=(), expect_failure=False):
         with open(os.path.join(workdir, name + ".prm"), "w") as f:
             f.write(base + "\nsubsection Output\n  set Directory = %s\nend\n"
                     "subsection Time stepping\n  set Number of steps = %s\nend\n"
                     "subsection Checkpointing\n  set Resume = %s\nend\n"
-                    % (directory, n_steps, resume))
+                    % (directory, n_steps, resume)
+                    + "".join(prm_setting(s) for s in settings))
         result = run_viscofilm(opts, [name + ".prm"], workdir)
-        if result.returncode != 0:
+        if result.returncode != 0 and not expect_failure:
             fail("viscofilm exited with %d in the %s run:\n%s"
                  % (result.returncode, name, result.stderr))
+        return result
+    return run
 
+
+def mode_restart(opts, workdir):
+    with open(opts.prm) as f:
+        base = f.read()
+    steps = read_prm_setting(base, "Number of steps")
+    run = checkpointed_run(opts, workdir, base)
     run("uninterrupted", "full", steps, "false")
     run("stopped", "part", opts.stop_after, "false")
-    run("resumed", "part", steps, "true")
+    if opts.interrupt_commit:
+        checkpoint = os.path.join(workdir, "part", "checkpoint")
+        shutil.copytree(checkpoint, checkpoint + ".new")
+        os.rename(checkpoint, checkpoint + ".old")
+    run("resumed", "part", steps, "true", opts.resume_set)
     opts.reference = os.path.join(workdir, "uninterrupted.output")
     with open(opts.reference, "w") as f:
         f.write(extract_columns(os.path.join(workdir, "full"), opts.compare))
     compare(opts, extract_columns(os.path.join(workdir, "part"), opts.compare),
             workdir)
+
+
+def mode_refused(opts, workdir):
+    with open(opts.prm) as f:
+        base = f.read()
+    run = checkpointed_run(opts, workdir, base)
+    run("stopped", "part", opts.stop_after, "false")
+    statistics = os.path.join(workdir, "part", "statistics.csv")
+    with open(statistics) as f:
+        before = f.read()
+    messages = []
+    for setting in opts.resume_set:
+        result = run("resumed", "part", opts.stop_after, "true", [setting],
+                     expect_failure=True)
+        if result.returncode == 0:
+            fail("resumed with %s changed" % setting)
+        with open(statistics) as f:
+            if f.read() != before:
+                fail("the refused resume with %s changed statistics.csv" % setting)
+        messages.append(result.stderr.splitlines()[0])
+    compare(opts, "\n".join(messages) + "\n", workdir)
 
 
 def mode_hdf5(opts, workdir):
@@ -305,8 +354,8 @@ def mode_fields(opts, workdir):
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--mode", required=True,
-                        choices=["run", "convergence", "error", "restart", "hdf5",
-                                 "fields"])
+                        choices=["run", "convergence", "error", "restart", "refused",
+                                 "hdf5", "fields"])
     parser.add_argument("--viscofilm", required=True)
     parser.add_argument("--mpiexec", default="mpirun")
     parser.add_argument("--mpiexec-flags", default="")
@@ -322,6 +371,8 @@ def main():
     parser.add_argument("--min-rates", default="")
     parser.add_argument("--timeout", type=float, default=600)
     parser.add_argument("--stop-after", default="4")
+    parser.add_argument("--interrupt-commit", action="store_true")
+    parser.add_argument("--resume-set", action="append", default=[])
     parser.add_argument("--exact", action="append", default=[])
     parser.add_argument("--tolerance", type=float, default=0)
     opts = parser.parse_args()
@@ -329,7 +380,8 @@ def main():
     shutil.rmtree(opts.workdir, ignore_errors=True)
     os.makedirs(opts.workdir)
     {"run": mode_run, "convergence": mode_convergence, "error": mode_error,
-     "restart": mode_restart, "hdf5": mode_hdf5, "fields": mode_fields}[opts.mode](opts, opts.workdir)
+     "restart": mode_restart, "refused": mode_refused, "hdf5": mode_hdf5,
+     "fields": mode_fields}[opts.mode](opts, opts.workdir)
     print("PASSED")
 
 
