@@ -148,12 +148,26 @@ def check_bounds(opts, directory):
         print("bound holds: " + bound)
 
 
-def mode_run(opts, workdir):
+def run_case(opts, workdir):
+    """Run --prm in workdir; returns the output directory."""
     prm = shutil.copy(opts.prm, workdir)
     result = run_viscofilm(opts, [os.path.basename(prm)], workdir)
     if result.returncode != 0:
         fail("viscofilm exited with %d:\n%s" % (result.returncode, result.stderr))
-    directory = output_directory(workdir, prm)
+    return output_directory(workdir, prm)
+
+
+def snapshot_files(directory):
+    """The HDF5 files solution.xdmf names, in the order it names them."""
+    with open(os.path.join(directory, "solution.xdmf")) as f:
+        files = list(dict.fromkeys(re.findall(r"(solution-\d+\.h5):", f.read())))
+    if not files:
+        fail("solution.xdmf names no HDF5 file")
+    return files
+
+
+def mode_run(opts, workdir):
+    directory = run_case(opts, workdir)
     check_bounds(opts, directory)
     compare(opts, extract_columns(directory, opts.compare), workdir)
 
@@ -297,17 +311,9 @@ def mode_refused(opts, workdir):
 def mode_hdf5(opts, workdir):
     import h5py  # Debian's python3-h5py
 
-    prm = shutil.copy(opts.prm, workdir)
-    result = run_viscofilm(opts, [os.path.basename(prm)], workdir)
-    if result.returncode != 0:
-        fail("viscofilm exited with %d:\n%s" % (result.returncode, result.stderr))
-    directory = output_directory(workdir, prm)
-    with open(os.path.join(directory, "solution.xdmf")) as f:
-        files = sorted(set(re.findall(r"(solution-\d+\.h5):", f.read())))
-    if not files:
-        fail("solution.xdmf names no HDF5 file")
+    directory = run_case(opts, workdir)
     lines = []
-    for name in files:
+    for name in sorted(snapshot_files(directory)):
         with h5py.File(os.path.join(directory, name), "r") as h5:
             for key in sorted(h5.keys()):
                 data = h5[key][()]
@@ -320,13 +326,8 @@ def mode_fields(opts, workdir):
     import h5py  # Debian's python3-h5py (and so numpy)
     import numpy as np
 
-    prm = shutil.copy(opts.prm, workdir)
-    result = run_viscofilm(opts, [os.path.basename(prm)], workdir)
-    if result.returncode != 0:
-        fail("viscofilm exited with %d:\n%s" % (result.returncode, result.stderr))
-    directory = output_directory(workdir, prm)
-    with open(os.path.join(directory, "solution.xdmf")) as f:
-        last = re.findall(r"(solution-\d+\.h5):", f.read())[-1]
+    directory = run_case(opts, workdir)
+    last = snapshot_files(directory)[-1]
     with h5py.File(os.path.join(directory, last), "r") as h5:
         nodes, cells = h5["nodes"][()], h5["cells"][()].astype(int)
         datasets = {name: h5[name][()] for name in h5.keys()}
