@@ -242,17 +242,21 @@ class Run:
             else:
                 labels = ["u", "v"] if name == "velocity" else [f"{name}_x", f"{name}_y"]
                 fields.update(zip(labels, data[:, :2].T))
-        # Parallel runs write the nodes on partition boundaries once per rank:
-        # keep the first copy of each, in file order.
+        # Every cell writes its own copy of its vertices (a field that jumps
+        # between cells keeps each cell's value there): merge the copies into
+        # one node, in file order, with the mean of their values (the value
+        # itself for a continuous field).
         _, first, inverse = np.unique(nodes.round(12), axis=0,
                                       return_index=True, return_inverse=True)
         if len(first) < len(nodes):
             order = np.argsort(first)
             renumber = np.empty_like(order)
             renumber[order] = np.arange(len(order))
-            keep = first[order]
-            nodes, quads = nodes[keep], renumber[inverse.ravel()][quads]
-            fields = {name: values[keep] for name, values in fields.items()}
+            merged = renumber[inverse.ravel()]
+            copies = np.bincount(merged)
+            nodes, quads = nodes[first[order]], merged[quads]
+            fields = {name: np.bincount(merged, weights=values) / copies
+                      for name, values in fields.items()}
         return Snapshot(info, nodes, quads, fields)
 
 

@@ -8,63 +8,70 @@
 #include <viscofilm/checkpoint.h>
 #include <viscofilm/input.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
+#include <map>
 #include <sstream>
 
 namespace viscofilm
 {
   namespace
   {
-    /// Entries that shape the solution: resuming with other values would
-    /// continue a different run. (Output, solver and step-count settings may
-    /// change.)
-    std::vector<std::vector<std::string>>
-    critical_entries()
+    /// The entries that may differ when a run is resumed: where, what and
+    /// how often it writes, how far it goes, and caps whose reaching stops
+    /// the run instead of changing its solution. Every other declared entry
+    /// shapes the solution and must be as the checkpoint recorded it, so
+    /// that a newly declared parameter is checked by default.
+    const std::vector<std::string> free_on_resume = {
+      "Output/Directory",
+      "Output/Interval",
+      "Output/Probe points",
+      "Checkpointing/Interval",
+      "Checkpointing/Resume",
+      "Time stepping/Number of steps",
+      "Stokes solver/Maximum iterations",
+      "Departure feet/Maximum Newton iterations"};
+
+
+    /// Every declared entry that shapes the solution, "Subsection/Name",
+    /// with its value, found by walking the tree of @p prm.
+    std::vector<std::pair<std::string, std::string>>
+    critical_entries(const ParameterHandler &prm)
     {
-      std::vector<std::vector<std::string>> entries = {
-        {"Geometry", "Lower left corner"},
-        {"Geometry", "Upper right corner"},
-        {"Geometry", "Initial global refinement"},
-        {"Time stepping", "Time step"},
-        {"Time stepping", "CFL number"},
-        {"Model", "Reynolds number"},
-        {"Model", "Viscosity ratio"},
-        {"Model", "Weissenberg number"},
-        {"Model", "Slip parameter"},
-        {"Model", "Diffusion coefficient"},
-        {"Model", "Viscoelastic"},
-        {"Stress", "Element"},
-        {"Stress", "Deformation gradient"},
-        {"Stabilization", "GLS tau"},
-        {"Stabilization", "GLS parameter"},
-        {"Mesh refinement", "Adaptive"},
-        {"Mesh refinement", "Interval"},
-        {"Mesh refinement", "Minimum level"},
-        {"Mesh refinement", "Maximum level"},
-        {"Mesh refinement", "Refinement threshold"}};
-      for (const char *boundary : {"Inlet", "Outlet", "Bottom", "Top"})
-        for (const char *entry :
-             {"Type", "Velocity", "Function constants", "Volume fraction"})
-          entries.push_back({"Boundary conditions", boundary, entry});
+      std::ostringstream listing;
+      prm.print_parameters(listing, ParameterHandler::ShortPRM);
+      std::istringstream                               lines(listing.str());
+      std::vector<std::string>                         subsections;
+      std::vector<std::pair<std::string, std::string>> entries;
+      unsigned int                                     n_free = 0;
+      for (std::string line; std::getline(lines, line);)
+        {
+          line = Utilities::trim(line);
+          if (line.rfind("subsection ", 0) == 0)
+            subsections.push_back(line.substr(11));
+          else if (line == "end")
+            subsections.pop_back();
+          else if (line.rfind("set ", 0) == 0)
+            {
+              const std::string name =
+                Utilities::trim(line.substr(4, line.find('=') - 4));
+              std::string path;
+              for (const std::string &subsection : subsections)
+                path += subsection + "/";
+              path += name;
+              if (std::find(free_on_resume.begin(), free_on_resume.end(), path) ==
+                  free_on_resume.end())
+                entries.emplace_back(path, prm.get(subsections, name));
+              else
+                ++n_free;
+            }
+        }
+      AssertThrow(n_free == free_on_resume.size(),
+                  ExcMessage("free_on_resume names an entry that is not declared"));
       return entries;
-    }
-
-    std::string
-    path_of(const std::vector<std::string> &entry)
-    {
-      std::string path;
-      for (const std::string &part : entry)
-        path += (path.empty() ? "" : "/") + part;
-      return path;
-    }
-
-    std::string
-    value_of(const ParameterHandler &prm, const std::vector<std::string> &entry)
-    {
-      return prm.get(std::vector<std::string>(entry.begin(), entry.end() - 1),
-                     entry.back());
     }
   } // namespace
 
@@ -79,12 +86,17 @@ namespace viscofilm
                       "Time steps between checkpoints (0: none), written to "
                       "OUTPUT/checkpoint; the last step always writes one when "
                       "this is > 0.");
+    std::string free;
+    for (const std::string &path : free_on_resume)
+      free += (free.empty() ? "" : ", ") + path;
     prm.declare_entry("Resume",
                       "false",
                       Patterns::Bool(),
-                      "Continue from OUTPUT/checkpoint, appending to the run's "
-                      "files. Refused if a parameter that shapes the solution "
-                      "changed; Time stepping/Number of steps may grow.");
+                      "Continue from OUTPUT/checkpoint (or from "
+                      "OUTPUT/checkpoint.old, where a run stopped while "
+                      "replacing one by the next), appending to the run's "
+                      "files. Refused if any parameter differs from the "
+                      "checkpoint's except " + free + ".");
     prm.leave_subsection();
   }
 
@@ -146,9 +158,8 @@ namespace viscofilm
           std::ofstream out(staging + "/state");
           out << std::setprecision(17) << "step " << state.step << "\ntime "
               << state.time << "\n";
-          for (const auto &entry : critical_entries())
-            out << "parameter " << path_of(entry) << " = " << value_of(prm, entry)
-                << "\n";
+          for (const auto &[path, value] : critical_entries(prm))
+            out << "parameter " << path << " = " << value << "\n";
           out << "snapshots\n";
           boost::archive::text_oarchive archive(out);
           archive << state.snapshots;
@@ -173,6 +184,18 @@ namespace viscofilm
     std::string text;
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
+        // Stopped between the two renames of commit(): the last checkpoint
+        // is whole under its old name. Restore it, so that the next commit
+        // does not delete it.
+        const std::string previous = directory + ".old";
+        if (!std::filesystem::exists(directory) &&
+            std::filesystem::exists(previous + "/state"))
+          {
+            std::filesystem::rename(previous, directory);
+            std::cout << "The last checkpoint's commit was interrupted: resuming "
+                         "from the one before it, "
+                      << previous << std::endl;
+          }
         std::ifstream in(directory + "/state");
         std::ostringstream contents;
         contents << in.rdbuf();
@@ -188,17 +211,21 @@ namespace viscofilm
     std::string        word, line;
     in >> word >> state.step >> word >> state.time;
     std::getline(in, line);
+    std::map<std::string, std::string> saved;
     while (std::getline(in, line) && line != "snapshots")
+      saved[line.substr(10, line.find(" = ") - 10)] =
+        line.substr(line.find(" = ") + 3);
+    for (const auto &[path, value] : critical_entries(prm))
       {
-        const std::string path  = line.substr(10, line.find(" = ") - 10);
-        const std::string saved = line.substr(line.find(" = ") + 3);
-        for (const auto &entry : critical_entries())
-          if (path_of(entry) == path)
-            check_input(value_of(prm, entry) == saved,
-                        "Checkpointing/Resume: " + path + " is \"" +
-                          value_of(prm, entry) + "\" but the checkpoint was "
-                          "written with \"" + saved +
-                          "\"; resuming would continue a different run");
+        const auto entry = saved.find(path);
+        check_input(entry != saved.end(),
+                    "Checkpointing/Resume: the checkpoint does not record " +
+                      path + " (written by another version of viscofilm)");
+        check_input(entry->second == value,
+                    "Checkpointing/Resume: " + path + " is \"" + value +
+                      "\" but the checkpoint was written with \"" +
+                      entry->second +
+                      "\"; resuming would continue a different run");
       }
     boost::archive::text_iarchive archive(in);
     archive >> state.snapshots;

@@ -192,8 +192,11 @@ namespace viscofilm
     // Subdivide each cell once per polynomial degree: the Q2 nodes are kept.
     data_out.build_patches(2);
 
+    // Every cell keeps its own copy of its vertices: merging them ("filter
+    // duplicates") kept one cell's value of the fields that jump between
+    // cells (∇·u, vorticity, u·∇u, the loads, a discontinuous stress).
     DataOutBase::DataOutFilter filter(
-      DataOutBase::DataOutFilterFlags(/*filter duplicates*/ true,
+      DataOutBase::DataOutFilterFlags(/*filter duplicates*/ false,
                                       /*xdmf hdf5*/ true));
     data_out.write_filtered_data(filter);
 

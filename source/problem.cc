@@ -199,20 +199,6 @@ namespace viscofilm
   }
 
 
-  double
-  Problem::choose_time_step(const double time, const double end_time) const
-  {
-    double k = parameters.time_stepping.time_step;
-    if (parameters.time_stepping.cfl > 0)
-      {
-        const double speed = stokes.max_velocity();
-        if (speed > 0)
-          k = std::min(k, parameters.time_stepping.cfl * min_cell_size / speed);
-      }
-    return std::min(k, end_time - time);
-  }
-
-
   Problem::StepReport
   Problem::do_time_step(const double time)
   {
@@ -282,9 +268,8 @@ namespace viscofilm
     statistics.set("step", step);
     statistics.set("time", time);
     statistics.set("time_step", time_step);
-    // One pass over the nodes serves both columns.
+    statistics.set("cfl", step_cfl);
     const double max_velocity = stokes.max_velocity();
-    statistics.set("cfl", max_velocity * time_step / min_cell_size);
     statistics.set("cells", triangulation.n_global_active_cells());
     statistics.set("stokes_iterations", report.total_stokes_iterations);
     statistics.set("picard_iterations", report.picard_iterations);
@@ -388,7 +373,10 @@ namespace viscofilm
     const double       start_time        = time;
     for (unsigned int step = first_step; time < end_time * (1 - 1e-12); ++step)
       {
-        time_step = choose_time_step(time, end_time);
+        // The step's CFL number is that of u^n, which the feet follow.
+        const double speed = stokes.max_velocity();
+        time_step = parameters.time_stepping.step_length(time, speed, min_cell_size);
+        step_cfl  = speed * time_step / min_cell_size;
         time += time_step;
         const bool last_step = (time >= end_time * (1 - 1e-12));
         StepReport report;

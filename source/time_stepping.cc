@@ -1,6 +1,8 @@
 #include <viscofilm/input.h>
 #include <viscofilm/time_stepping.h>
 
+#include <algorithm>
+
 namespace viscofilm
 {
   void
@@ -57,5 +59,17 @@ namespace viscofilm
                   to_text(time_step));
     check_input(picard_tolerance > 0,
                 "Time stepping/Picard tolerance must be > 0, got 0");
+  }
+
+
+  double
+  TimeStepping::step_length(const double time,
+                            const double max_speed,
+                            const double cell_size) const
+  {
+    double k = time_step;
+    if (cfl > 0 && max_speed > 0)
+      k = std::min(k, cfl * cell_size / max_speed);
+    return std::min(k, n_steps * time_step - time);
   }
 } // namespace viscofilm

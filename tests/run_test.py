@@ -15,9 +15,23 @@ Modes
   restart      run FILE.prm (which sets Checkpointing/Interval) to its end, and
                again stopped after --stop-after steps and resumed from its
                checkpoint: the --compare columns of both must agree to
-               --numdiff (the reference is the uninterrupted run).
+               --numdiff (the reference is the uninterrupted run). The
+               resumed run sets each --resume-set "Subsection/Name=value"
+               (entries that may change on resume). --interrupt-commit: leave
+               the checkpoint as a kill between the two renames of a commit
+               would (checkpoint.old whole, no checkpoint/, a checkpoint.new).
+  refused      run FILE.prm stopped after --stop-after steps, then resume it
+               once with each --resume-set changed: each resume must fail with
+               a non-zero exit status, leave statistics.csv as it was, and
+               print the messages in --reference (one per --resume-set).
   hdf5         run FILE.prm and list the datasets of every snapshot named in
                solution.xdmf (needs h5py), numdiff the listing.
+  fields       run FILE.prm and check the node values of the last snapshot
+               against --exact "dataset=expression in x, y" (dataset[i] for a
+               component; a Python expression) to --tolerance: at every corner
+               of every cell the value must be the limit of the expression
+               from inside that cell, so a field that jumps between cells must
+               be written with both one-sided values (needs h5py).
 
 In modes run and convergence, --bound "file.csv:column<value" (or >) must hold
 in every row of the run(s), and "file.csv:max(column)<value" (or sum) for the
@@ -62,9 +76,10 @@ def run_viscofilm(opts, args, workdir):
 
 
 def read_prm_setting(prm_text, name):
-    match = re.search(r"^\s*set\s+" + re.escape(name) + r"\s*=\s*(.*?)\s*(#.*)?$",
-                      prm_text, re.MULTILINE)
-    return match.group(1) if match else None
+    """The value of the last "set name = ..." (the one ParameterHandler keeps)."""
+    matches = re.findall(r"^\s*set\s+" + re.escape(name) + r"\s*=\s*(.*?)\s*(?:#.*)?$",
+                         prm_text, re.MULTILINE)
+    return matches[-1] if matches else None
 
 
 def output_directory(workdir, prm):
@@ -133,12 +148,26 @@ def check_bounds(opts, directory):
         print("bound holds: " + bound)
 
 
-def mode_run(opts, workdir):
+def run_case(opts, workdir):
+    """Run --prm in workdir; returns the output directory."""
     prm = shutil.copy(opts.prm, workdir)
     result = run_viscofilm(opts, [os.path.basename(prm)], workdir)
     if result.returncode != 0:
         fail("viscofilm exited with %d:\n%s" % (result.returncode, result.stderr))
-    directory = output_directory(workdir, prm)
+    return output_directory(workdir, prm)
+
+
+def snapshot_files(directory):
+    """The HDF5 files solution.xdmf names, in the order it names them."""
+    with open(os.path.join(directory, "solution.xdmf")) as f:
+        files = list(dict.fromkeys(re.findall(r"(solution-\d+\.h5):", f.read())))
+    if not files:
+        fail("solution.xdmf names no HDF5 file")
+    return files
+
+
+def mode_run(opts, workdir):
+    directory = run_case(opts, workdir)
     check_bounds(opts, directory)
     compare(opts, extract_columns(directory, opts.compare), workdir)
 
@@ -213,25 +242,44 @@ def mode_error(opts, workdir):
             + "\n", workdir)
 
 
-def mode_restart(opts, workdir):
-    with open(opts.prm) as f:
-        base = f.read()
-    steps = read_prm_setting(base, "Number of steps")
+def prm_setting(setting):
+    """'Subsection/Name=value' -> the parameter file lines that set it."""
+    path, value = setting.split("=", 1)
+    *subsections, name = path.split("/")
+    return ("".join("subsection %s\n" % s for s in subsections)
+            + "set %s = %s\n" % (name, value) + "end\n" * len(subsections))
 
-    def run(name, directory, n_steps, resume):
+
+def checkpointed_run(opts, workdir, base):
+    """run(name, directory, n_steps, resume, settings=[]) runs base with
+    those settings; it returns the result and fails unless expect_failure."""
+    def run(name, directory, n_steps, resume, settings=(), expect_failure=False):
         with open(os.path.join(workdir, name + ".prm"), "w") as f:
             f.write(base + "\nsubsection Output\n  set Directory = %s\nend\n"
                     "subsection Time stepping\n  set Number of steps = %s\nend\n"
                     "subsection Checkpointing\n  set Resume = %s\nend\n"
-                    % (directory, n_steps, resume))
+                    % (directory, n_steps, resume)
+                    + "".join(prm_setting(s) for s in settings))
         result = run_viscofilm(opts, [name + ".prm"], workdir)
-        if result.returncode != 0:
+        if result.returncode != 0 and not expect_failure:
             fail("viscofilm exited with %d in the %s run:\n%s"
                  % (result.returncode, name, result.stderr))
+        return result
+    return run
 
+
+def mode_restart(opts, workdir):
+    with open(opts.prm) as f:
+        base = f.read()
+    steps = read_prm_setting(base, "Number of steps")
+    run = checkpointed_run(opts, workdir, base)
     run("uninterrupted", "full", steps, "false")
     run("stopped", "part", opts.stop_after, "false")
-    run("resumed", "part", steps, "true")
+    if opts.interrupt_commit:
+        checkpoint = os.path.join(workdir, "part", "checkpoint")
+        shutil.copytree(checkpoint, checkpoint + ".new")
+        os.rename(checkpoint, checkpoint + ".old")
+    run("resumed", "part", steps, "true", opts.resume_set)
     opts.reference = os.path.join(workdir, "uninterrupted.output")
     with open(opts.reference, "w") as f:
         f.write(extract_columns(os.path.join(workdir, "full"), opts.compare))
@@ -239,20 +287,33 @@ def mode_restart(opts, workdir):
             workdir)
 
 
+def mode_refused(opts, workdir):
+    with open(opts.prm) as f:
+        base = f.read()
+    run = checkpointed_run(opts, workdir, base)
+    run("stopped", "part", opts.stop_after, "false")
+    statistics = os.path.join(workdir, "part", "statistics.csv")
+    with open(statistics) as f:
+        before = f.read()
+    messages = []
+    for setting in opts.resume_set:
+        result = run("resumed", "part", opts.stop_after, "true", [setting],
+                     expect_failure=True)
+        if result.returncode == 0:
+            fail("resumed with %s changed" % setting)
+        with open(statistics) as f:
+            if f.read() != before:
+                fail("the refused resume with %s changed statistics.csv" % setting)
+        messages.append(result.stderr.splitlines()[0])
+    compare(opts, "\n".join(messages) + "\n", workdir)
+
+
 def mode_hdf5(opts, workdir):
     import h5py  # Debian's python3-h5py
 
-    prm = shutil.copy(opts.prm, workdir)
-    result = run_viscofilm(opts, [os.path.basename(prm)], workdir)
-    if result.returncode != 0:
-        fail("viscofilm exited with %d:\n%s" % (result.returncode, result.stderr))
-    directory = output_directory(workdir, prm)
-    with open(os.path.join(directory, "solution.xdmf")) as f:
-        files = sorted(set(re.findall(r"(solution-\d+\.h5):", f.read())))
-    if not files:
-        fail("solution.xdmf names no HDF5 file")
+    directory = run_case(opts, workdir)
     lines = []
-    for name in files:
+    for name in sorted(snapshot_files(directory)):
         with h5py.File(os.path.join(directory, name), "r") as h5:
             for key in sorted(h5.keys()):
                 data = h5[key][()]
@@ -261,10 +322,41 @@ def mode_hdf5(opts, workdir):
     compare(opts, "\n".join(lines) + "\n", workdir)
 
 
+def mode_fields(opts, workdir):
+    import h5py  # Debian's python3-h5py (and so numpy)
+    import numpy as np
+
+    directory = run_case(opts, workdir)
+    last = snapshot_files(directory)[-1]
+    with h5py.File(os.path.join(directory, last), "r") as h5:
+        nodes, cells = h5["nodes"][()], h5["cells"][()].astype(int)
+        datasets = {name: h5[name][()] for name in h5.keys()}
+    # Each cell's corners, moved 1e-9 of the way to its centre: the exact
+    # field there is its limit from inside that cell.
+    corners = nodes[cells]
+    inside = corners + 1e-9 * (corners.mean(axis=1, keepdims=True) - corners)
+    for spec in opts.exact:
+        name, expression = spec.split("=", 1)
+        match = re.fullmatch(r"(\w+)(?:\[(\d)\])?", name.strip())
+        values = datasets[match.group(1)].reshape(len(nodes), -1)
+        values = values[:, int(match.group(2) or 0)][cells]
+        exact = np.vectorize(lambda x, y: eval(expression, dict(vars(math)), {"x": x, "y": y}),
+                             otypes=[float])(inside[..., 0], inside[..., 1])
+        error = np.abs(values - exact)
+        worst = np.unravel_index(np.argmax(error), error.shape)
+        if error[worst] > opts.tolerance:
+            fail("%s: %s = %.10g at the corner (%g, %g) of the cell around (%g, %g), "
+                 "exact %.10g" % (last, name, values[worst], *corners[worst],
+                                  *corners[worst[0]].mean(axis=0), exact[worst]))
+        print("%s: %s equals %s at every cell's corners to %.1e (tolerance %g)"
+              % (last, name, expression, error.max(), opts.tolerance))
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--mode", required=True,
-                        choices=["run", "convergence", "error", "restart", "hdf5"])
+                        choices=["run", "convergence", "error", "restart", "refused",
+                                 "hdf5", "fields"])
     parser.add_argument("--viscofilm", required=True)
     parser.add_argument("--mpiexec", default="mpirun")
     parser.add_argument("--mpiexec-flags", default="")
@@ -280,12 +372,17 @@ def main():
     parser.add_argument("--min-rates", default="")
     parser.add_argument("--timeout", type=float, default=600)
     parser.add_argument("--stop-after", default="4")
+    parser.add_argument("--interrupt-commit", action="store_true")
+    parser.add_argument("--resume-set", action="append", default=[])
+    parser.add_argument("--exact", action="append", default=[])
+    parser.add_argument("--tolerance", type=float, default=0)
     opts = parser.parse_args()
 
     shutil.rmtree(opts.workdir, ignore_errors=True)
     os.makedirs(opts.workdir)
     {"run": mode_run, "convergence": mode_convergence, "error": mode_error,
-     "restart": mode_restart, "hdf5": mode_hdf5}[opts.mode](opts, opts.workdir)
+     "restart": mode_restart, "refused": mode_refused, "hdf5": mode_hdf5,
+     "fields": mode_fields}[opts.mode](opts, opts.workdir)
     print("PASSED")
 
 

@@ -56,7 +56,9 @@ namespace viscofilm
     commit(const State &state, const ParameterHandler &prm) const;
 
     /// The saved state, after checking that the parameters that shape the
-    /// solution are those of the checkpoint. Collective; throws ExcInput.
+    /// solution (every declared one but a short list) are those of the
+    /// checkpoint. If a commit was stopped between its two renames, the
+    /// previous checkpoint is restored first. Collective; throws ExcInput.
     State
     read(const ParameterHandler &prm) const;
 

@@ -97,7 +97,9 @@ namespace viscofilm
     snapshot_due(const unsigned int step, const bool last_step) const;
 
     /// Write solution-NNNNN.h5 with the fields @p add_fields adds (each on
-    /// Q2 patches: two subdivisions per cell) and rewrite solution.xdmf.
+    /// Q2 patches: two subdivisions per cell, every cell with its own copy
+    /// of its vertices so that fields discontinuous between cells keep each
+    /// cell's value) and rewrite solution.xdmf.
     void
     write_snapshot(const unsigned int                             step,
                    const double                                   time,

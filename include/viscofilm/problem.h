@@ -70,10 +70,6 @@ namespace viscofilm
     resume_from_checkpoint();
     void
     set_initial_conditions();
-    /// The length of the next step (Time stepping/CFL number), ending at
-    /// most at @p end_time.
-    double
-    choose_time_step(const double time, const double end_time) const;
     /// One step t_n -> t_{n+1} = @p time of length time_step: feet, Picard
     /// loop, transport.
     StepReport
@@ -87,6 +83,7 @@ namespace viscofilm
 
     Parameters &            parameters;
     double                  time_step     = 0; // of the current step
+    double                  step_cfl      = 0; // its max|u^n| k / Δx
     double                  min_cell_size = 0; // smallest cell edge
     const ParameterHandler &prm;
     MPI_Comm                mpi_communicator;

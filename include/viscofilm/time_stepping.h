@@ -16,6 +16,13 @@ namespace viscofilm
     void
     parse_parameters(ParameterHandler &prm);
 
+    /// The length of the step from @p time: Time step, or with CFL number
+    /// > 0 at most cfl × @p cell_size / @p max_speed (max|u^n|, the velocity
+    /// the departure feet follow; @p cell_size the smallest cell edge), and
+    /// ending at the end time n_steps × time_step at the latest.
+    double
+    step_length(const double time, const double max_speed, const double cell_size) const;
+
     double       time_step = 0.003125;
     unsigned int n_steps   = 200;
     /// > 0: k = min(time_step, cfl Δx / max|u|) each step, up to the end
