@@ -41,14 +41,15 @@ namespace viscofilm
     prm.declare_entry("GLS tau",
                       "constant",
                       Patterns::Selection("constant|standard"),
-                      "Volume fraction scheme thesis only. constant: τ_GLS = GLS parameter (the "
-                      "thesis, eq. 3.49). "
-                      "standard: τ_GLS = GLS parameter × (4/k² + (2|u|/h)²)^(-1/2).");
+                      "Used by Volume fraction scheme = thesis. constant: "
+                      "τ_GLS = GLS parameter (the thesis, eq. 3.49). standard: "
+                      "τ_GLS = GLS parameter × (4/k² + (2|u|/h)²)^(-1/2).");
     prm.declare_entry("GLS parameter",
                       "1.0",
                       Patterns::Double(0),
-                      "Volume fraction scheme thesis only. τ_GLS (constant) or its factor "
-                      "(standard), >= 0. The thesis used 1.0 and tried 0.3.");
+                      "Used by Volume fraction scheme = thesis. τ_GLS "
+                      "(constant) or its factor (standard), >= 0. The thesis "
+                      "used 1.0 and tried 0.3.");
     prm.leave_subsection();
   }
 
