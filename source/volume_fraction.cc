@@ -475,7 +475,7 @@ namespace viscofilm
   }
 
 
-  double
+  void
   VolumeFraction::restore_mass(const double                         mass,
                                const TrilinosWrappers::MPI::Vector &lower,
                                const TrilinosWrappers::MPI::Vector &upper)
@@ -519,7 +519,6 @@ namespace viscofilm
     distributed.add(lambda, room);
     constraints.distribute(distributed);
     current_solution = distributed;
-    return missing - lambda * available;
   }
 
 

@@ -140,8 +140,8 @@ namespace viscofilm
     /// Add λ c_i, c_i = (φ_i − l_i)(u_i − φ_i)/(u_i − l_i), to the free
     /// nodes so that ∫φ = @p mass; |λ| <= 1 keeps φ_i in [l_i, u_i] (l =
     /// @p lower, u = @p upper), so mass goes only where φ is between its
-    /// bounds: at fronts. Returns the mass still missing (0 unless |λ| = 1).
-    double
+    /// bounds: at fronts. (With |λ| = 1 some mass may still be missing.)
+    void
     restore_mass(const double                         mass,
                  const TrilinosWrappers::MPI::Vector &lower,
                  const TrilinosWrappers::MPI::Vector &upper);
