@@ -175,6 +175,8 @@ namespace viscofilm
     return result;
   }
 
+  template std::vector<std::array<double, 3>>
+  PointEvaluator::evaluate<3>(const CellEvaluation<3> &) const;
   template std::vector<std::array<double, 4>>
   PointEvaluator::evaluate<4>(const CellEvaluation<4> &) const;
   template std::vector<std::array<double, 6>>

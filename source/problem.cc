@@ -252,7 +252,7 @@ namespace viscofilm
     {
       TimerOutput::Scope t(*computing_timer, "volume fraction");
       report.transport_iterations =
-        volume_fraction.advance(stokes, parameters.model.diffusion, k);
+        volume_fraction.advance(stokes, departure_feet, parameters.model.diffusion, k);
     }
     stokes.invalidate_matrix();
     return report;

@@ -2,6 +2,7 @@
 
 #include <deal.II/dofs/dof_tools.h>
 
+#include <deal.II/fe/fe_q_iso_q1.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q1.h>
 
@@ -12,6 +13,7 @@
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
+#include <viscofilm/departure_feet.h>
 #include <viscofilm/input.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/volume_fraction.h>
@@ -26,15 +28,27 @@ namespace viscofilm
   VolumeFraction::Parameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Stabilization");
+    prm.declare_entry("Volume fraction scheme",
+                      "semi-Lagrangian",
+                      Patterns::Selection("semi-Lagrangian|thesis"),
+                      "semi-Lagrangian: φ at the departure feet of its nodes, "
+                      "clipped to the nodal range of the cell there, mass "
+                      "restored at the fronts; diffusion and softening with an "
+                      "M-matrix: φ stays in the range of its initial and "
+                      "inflow values (doc/numerics.md). thesis: GLS-stabilised "
+                      "Galerkin (eq. 3.47-3.50), softening by Galerkin "
+                      "diffusion; not bounded.");
     prm.declare_entry("GLS tau",
                       "constant",
                       Patterns::Selection("constant|standard"),
-                      "constant: τ_GLS = GLS parameter (the thesis, eq. 3.49). "
-                      "standard: τ_GLS = GLS parameter × (4/k² + (2|u|/h)²)^(-1/2).");
+                      "Used by Volume fraction scheme = thesis. constant: "
+                      "τ_GLS = GLS parameter (the thesis, eq. 3.49). standard: "
+                      "τ_GLS = GLS parameter × (4/k² + (2|u|/h)²)^(-1/2).");
     prm.declare_entry("GLS parameter",
                       "1.0",
                       Patterns::Double(0),
-                      "τ_GLS (constant) or its factor (standard), >= 0. The thesis "
+                      "Used by Volume fraction scheme = thesis. τ_GLS "
+                      "(constant) or its factor (standard), >= 0. The thesis "
                       "used 1.0 and tried 0.3.");
     prm.leave_subsection();
   }
@@ -44,6 +58,7 @@ namespace viscofilm
   VolumeFraction::Parameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Stabilization");
+    bounded       = (prm.get("Volume fraction scheme") == "semi-Lagrangian");
     standard_tau  = (prm.get("GLS tau") == "standard");
     gls_parameter = prm.get_double("GLS parameter");
     prm.leave_subsection();
@@ -99,8 +114,12 @@ namespace viscofilm
     constraints.clear();
     constraints.reinit(locally_relevant_dofs);
     DoFTools::make_hanging_node_constraints(dofs, constraints);
+    inflow_faces.clear();
     if (stokes != nullptr)
       {
+        // Inflow where the mean u·n is below round-off relative to the
+        // velocity scale: a wall with u = 0 up to round-off is none.
+        const double tolerance = 1e-8 * stokes->max_velocity();
         const QGauss<1>     face_quadrature(3);
         FEFaceValues<2>     stokes_face(stokes->dof_handler().get_fe(),
                                     face_quadrature,
@@ -124,12 +143,14 @@ namespace viscofilm
                                                               velocity);
                   double flux = 0;
                   for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                    flux += velocity[q] * stokes_face.normal_vector(q);
-                  if (flux >= 0)
+                    flux += velocity[q] * stokes_face.normal_vector(q) *
+                            face_quadrature.weight(q);
+                  if (flux >= -tolerance)
                     continue;
                   const double value =
                     boundary_conditions.boundaries[cell->face(f)->boundary_id()]
                       .volume_fraction;
+                  inflow_faces[cell->face(f)->index()] = value;
                   cell->face(f)->get_dof_indices(face_dofs);
                   for (const auto dof : face_dofs)
                     if (!constraints.is_constrained(dof))
@@ -145,10 +166,20 @@ namespace viscofilm
 
   unsigned int
   VolumeFraction::advance(const StokesSolver &stokes,
+                          DepartureFeet &     feet,
                           const double        diffusion,
                           const double        time_step)
   {
-    return step(&stokes, diffusion, time_step);
+    if (!parameters.bounded)
+      return gls_step(&stokes, diffusion, time_step);
+    // The mass balance of the step: M^{n+1} = M^n − k ∫_∂Ω φ^n u^{n+1}·n.
+    const double mass = integral() - time_step * boundary_flux(stokes);
+    make_constraints(&stokes);
+    TrilinosWrappers::MPI::Vector lower, upper;
+    semi_lagrangian_step(stokes, feet, time_step, lower, upper);
+    const unsigned int iterations = bounded_diffusion_step(diffusion, time_step);
+    restore_mass(mass, lower, upper);
+    return iterations;
   }
 
 
@@ -157,13 +188,31 @@ namespace viscofilm
                          const unsigned int n_steps,
                          const double       time_step)
   {
+    if (!parameters.bounded)
+      {
+        for (unsigned int s = 0; s < n_steps; ++s)
+          gls_step(nullptr, diffusion, time_step);
+        return;
+      }
+    make_constraints(nullptr);
+    TrilinosWrappers::MPI::Vector lower(dofs.locally_owned_dofs(), mpi_communicator);
+    TrilinosWrappers::MPI::Vector upper(lower);
     for (unsigned int s = 0; s < n_steps; ++s)
-      step(nullptr, diffusion, time_step);
+      {
+        // The lumped mass of the sub-cells is conserved, not ∫φ: restore it
+        // within the range of φ^n.
+        const double mass            = integral();
+        const auto [phi_min, phi_max] = range();
+        lower                         = phi_min;
+        upper                         = phi_max;
+        bounded_diffusion_step(diffusion, time_step);
+        restore_mass(mass, lower, upper);
+      }
   }
 
 
   unsigned int
-  VolumeFraction::step(const StokesSolver *stokes,
+  VolumeFraction::gls_step(const StokesSolver *stokes,
                        const double        diffusion,
                        const double        time_step)
   {
@@ -247,7 +296,13 @@ namespace viscofilm
         }
     system_matrix.compress(VectorOperation::add);
     system_rhs.compress(VectorOperation::add);
+    return solve();
+  }
 
+
+  unsigned int
+  VolumeFraction::solve()
+  {
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
                                               mpi_communicator);
     distributed = current_solution;
@@ -274,6 +329,233 @@ namespace viscofilm
 
 
   void
+  VolumeFraction::semi_lagrangian_step(const StokesSolver &           stokes,
+                                       DepartureFeet &                feet,
+                                       const double                   time_step,
+                                       TrilinosWrappers::MPI::Vector &lower,
+                                       TrilinosWrappers::MPI::Vector &upper)
+  {
+    // The free nodes this rank owns, each with a cell around it as the hint.
+    const IndexSet &                                    owned = dofs.locally_owned_dofs();
+    const std::vector<Point<2>> &                       unit_support = fe.get_unit_support_points();
+    std::vector<bool>                                   seen(owned.n_elements());
+    std::vector<Point<2>>                               nodes;
+    std::vector<Triangulation<2>::active_cell_iterator> cells;
+    std::vector<types::global_dof_index>                node_dofs, local_dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(local_dofs);
+          for (unsigned int i = 0; i < local_dofs.size(); ++i)
+            if (owned.is_element(local_dofs[i]) &&
+                !constraints.is_constrained(local_dofs[i]) &&
+                !seen[owned.index_within_set(local_dofs[i])])
+              {
+                seen[owned.index_within_set(local_dofs[i])] = true;
+                nodes.push_back(
+                  StaticMappingQ1<2>::mapping.transform_unit_to_real_cell(cell, unit_support[i]));
+                cells.push_back(cell);
+                node_dofs.push_back(local_dofs[i]);
+              }
+        }
+
+    // With u^{n+1}, as the thesis transports φ with it.
+    feet.compute(nodes, cells, stokes.dof_handler(), stokes.solution(), time_step);
+    std::vector<double> cell_values(fe.n_dofs_per_cell());
+    const auto          at_feet = feet.at_feet().evaluate<3>(
+      [&](const Triangulation<2>::active_cell_iterator &cell,
+          const ArrayView<const Point<2>> &             unit_points,
+          const ArrayView<std::array<double, 3>> &      values) {
+        const DoFHandler<2>::active_cell_iterator dof_cell(&dofs.get_triangulation(),
+                                                           cell->level(),
+                                                           cell->index(),
+                                                           &dofs);
+        dof_cell->get_dof_values(current_solution, cell_values.begin(), cell_values.end());
+        const auto [low, high] = std::minmax_element(cell_values.begin(), cell_values.end());
+        for (unsigned int p = 0; p < unit_points.size(); ++p)
+          {
+            // A foot on an inflow face (moved there from outside the
+            // channel) takes the inflow value.
+            std::optional<double> inflow;
+            for (const unsigned int f : cell->face_indices())
+              if (cell->at_boundary(f) &&
+                  std::abs(unit_points[p][f / 2] - f % 2) < 1e-6 &&
+                  inflow_faces.count(cell->face(f)->index()) > 0)
+                inflow = inflow_faces.at(cell->face(f)->index());
+            if (inflow)
+              {
+                values[p] = {{*inflow, *inflow, *inflow}};
+                continue;
+              }
+            double value = 0;
+            for (unsigned int i = 0; i < cell_values.size(); ++i)
+              value += cell_values[i] * fe.shape_value(i, unit_points[p]);
+            values[p] = {{value, *low, *high}};
+          }
+      });
+
+    TrilinosWrappers::MPI::Vector distributed(owned, mpi_communicator);
+    lower.reinit(owned, mpi_communicator);
+    upper.reinit(owned, mpi_communicator);
+    for (unsigned int n = 0; n < nodes.size(); ++n)
+      {
+        const auto &[value, low, high] = at_feet[n];
+        distributed[node_dofs[n]]      = std::clamp(value, low, high);
+        lower[node_dofs[n]]            = low;
+        upper[node_dofs[n]]            = high;
+      }
+    constraints.distribute(distributed);
+    current_solution = distributed;
+  }
+
+
+  unsigned int
+  VolumeFraction::bounded_diffusion_step(const double diffusion, const double time_step)
+  {
+    system_matrix = 0;
+    system_rhs    = 0;
+    // FE_Q_iso_Q1(2) is Q1 on the four sub-cells of the Q2 nodes, numbered
+    // like FE_Q(2); its lumped mass is positive and its sub-cell stiffness
+    // nearly an M-matrix (exactly on squares with constant κ).
+    const FE_Q_iso_Q1<2> sub_cells(2);
+    const QIterated<2>   quadrature(QGauss<1>(2), 2);
+    FEValues<2>          values(sub_cells,
+                       quadrature,
+                       update_values | update_gradients | update_JxW_values);
+    const unsigned int   n_dofs = fe.n_dofs_per_cell();
+    FullMatrix<double>   cell_matrix(n_dofs, n_dofs);
+    Vector<double>       cell_rhs(n_dofs);
+    std::vector<double>  phi_old(n_dofs);
+    std::vector<types::global_dof_index> local_dofs(n_dofs);
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          values.reinit(static_cast<Triangulation<2>::cell_iterator>(cell));
+          cell->get_dof_values(current_solution, phi_old.begin(), phi_old.end());
+          cell_matrix = 0;
+          cell_rhs    = 0;
+          for (const unsigned int q : values.quadrature_point_indices())
+            {
+              // D φ^n (eq. 3.45) from the sub-cells' interpolant: >= 0 where
+              // the nodal values are.
+              double phi = 0;
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                phi += phi_old[i] * values.shape_value(i, q);
+              const double kappa = time_step * diffusion * std::max(phi, 0.0);
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                {
+                  const double lumped_mass = values.shape_value(i, q) * values.JxW(q);
+                  cell_matrix(i, i) += lumped_mass;
+                  cell_rhs(i) += lumped_mass * phi_old[i];
+                  for (unsigned int j = 0; j < n_dofs; ++j)
+                    cell_matrix(i, j) += kappa *
+                                         (values.shape_grad(i, q) * values.shape_grad(j, q)) *
+                                         values.JxW(q);
+                }
+            }
+          // Discrete upwinding (Kuzmin): remove positive off-diagonal
+          // entries, keeping row and column sums: an M-matrix whatever the
+          // cell's shape and κ.
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            for (unsigned int j = i + 1; j < n_dofs; ++j)
+              {
+                const double d = std::max({0.0, cell_matrix(i, j), cell_matrix(j, i)});
+                cell_matrix(i, j) -= d;
+                cell_matrix(j, i) -= d;
+                cell_matrix(i, i) += d;
+                cell_matrix(j, j) += d;
+              }
+          cell->get_dof_indices(local_dofs);
+          constraints.distribute_local_to_global(
+            cell_matrix, cell_rhs, local_dofs, system_matrix, system_rhs);
+        }
+    system_matrix.compress(VectorOperation::add);
+    system_rhs.compress(VectorOperation::add);
+    return solve();
+  }
+
+
+  void
+  VolumeFraction::restore_mass(const double                         mass,
+                               const TrilinosWrappers::MPI::Vector &lower,
+                               const TrilinosWrappers::MPI::Vector &upper)
+  {
+    // ∫φ = Σ_i w_i φ_i with w_i = ∫ψ_i over all nodes; a change of the free
+    // nodes changes it by W·δ, W = w condensed onto them.
+    const IndexSet &              owned = dofs.locally_owned_dofs();
+    TrilinosWrappers::MPI::Vector w(owned, mpi_communicator), weights(w);
+    const QGauss<2>               quadrature(fe.degree + 1);
+    FEValues<2>    fe_values(fe, quadrature, update_values | update_JxW_values);
+    Vector<double> cell_w(fe.n_dofs_per_cell());
+    std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell_w = 0;
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            for (unsigned int i = 0; i < cell_w.size(); ++i)
+              cell_w(i) += fe_values.shape_value(i, q) * fe_values.JxW(q);
+          cell->get_dof_indices(local_dofs);
+          w.add(local_dofs, cell_w);
+          constraints.distribute_local_to_global(cell_w, local_dofs, weights);
+        }
+    w.compress(VectorOperation::add);
+    weights.compress(VectorOperation::add);
+
+    TrilinosWrappers::MPI::Vector distributed(owned, mpi_communicator);
+    distributed = current_solution;
+    TrilinosWrappers::MPI::Vector room(owned, mpi_communicator);
+    for (const auto i : owned)
+      if (!constraints.is_constrained(i) && upper[i] > lower[i])
+        room[i] = std::max(0.0,
+                           (distributed[i] - lower[i]) * (upper[i] - distributed[i]) /
+                             (upper[i] - lower[i]));
+    room.compress(VectorOperation::insert);
+    const double missing   = mass - (w * distributed);
+    const double available = weights * room;
+    const double lambda =
+      available > 0 ? std::clamp(missing / available, -1.0, 1.0) : 0.0;
+    distributed.add(lambda, room);
+    constraints.distribute(distributed);
+    current_solution = distributed;
+  }
+
+
+  double
+  VolumeFraction::boundary_flux(const StokesSolver &stokes) const
+  {
+    const QGauss<1>                  quadrature(fe.degree + 1);
+    FEFaceValues<2>                  phi_face(fe, quadrature, update_values | update_JxW_values);
+    FEFaceValues<2>                  stokes_face(stokes.dof_handler().get_fe(),
+                                quadrature,
+                                update_values | update_normal_vectors);
+    const FEValuesExtractors::Vector velocities(0);
+    std::vector<double>              phi(quadrature.size());
+    std::vector<Tensor<1, 2>>        velocity(quadrature.size());
+    double                           flux = 0;
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->at_boundary())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->at_boundary(f))
+            {
+              phi_face.reinit(cell, f);
+              stokes_face.reinit(DoFHandler<2>::active_cell_iterator(&cell->get_triangulation(),
+                                                                     cell->level(),
+                                                                     cell->index(),
+                                                                     &stokes.dof_handler()),
+                                 f);
+              phi_face.get_function_values(current_solution, phi);
+              stokes_face[velocities].get_function_values(stokes.solution(), velocity);
+              for (const unsigned int q : phi_face.quadrature_point_indices())
+                flux += phi[q] * (velocity[q] * stokes_face.normal_vector(q)) *
+                        phi_face.JxW(q);
+            }
+    return Utilities::MPI::sum(flux, mpi_communicator);
+  }
+
+
+  void
   VolumeFraction::interpolate(const Function<2> &initial)
   {
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
@@ -294,6 +576,11 @@ namespace viscofilm
   void
   VolumeFraction::prepare_for_refinement()
   {
+    if (parameters.bounded)
+      {
+        const auto [phi_min, phi_max] = range();
+        before_transfer = std::array<double, 3>{{phi_min, phi_max, integral()}};
+      }
     carrier.prepare(dofs, current_solution);
   }
 
@@ -306,6 +593,22 @@ namespace viscofilm
                                               mpi_communicator);
     carrier.finish(dofs, distributed);
     current_solution = distributed;
+    if (before_transfer)
+      {
+        // Q2 interpolation onto children overshoots at fronts: clip to the
+        // range before, and restore the mass within it.
+        const auto [phi_min, phi_max, mass] = *before_transfer;
+        before_transfer.reset();
+        for (const auto i : dofs.locally_owned_dofs())
+          distributed[i] = std::clamp(static_cast<double>(distributed[i]), phi_min, phi_max);
+        constraints.distribute(distributed);
+        current_solution = distributed;
+        TrilinosWrappers::MPI::Vector lower(dofs.locally_owned_dofs(), mpi_communicator);
+        TrilinosWrappers::MPI::Vector upper(lower);
+        lower = phi_min;
+        upper = phi_max;
+        restore_mass(mass, lower, upper);
+      }
   }
 
 

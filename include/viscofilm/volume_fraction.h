@@ -20,16 +20,22 @@
 #include <viscofilm/boundary_conditions.h>
 #include <viscofilm/mesh_refinement.h>
 
+#include <array>
+#include <map>
+#include <optional>
+
 namespace viscofilm
 {
   using namespace dealii;
 
   class StokesSolver;
+  class DepartureFeet;
 
   class VolumeFraction
   {
   public:
-    /// GLS stabilisation of the transport (thesis eq. 3.47-3.50).
+    /// The transport scheme and the GLS stabilisation of the thesis' one
+    /// (thesis eq. 3.47-3.50).
     struct Parameters
     {
       static void
@@ -37,6 +43,9 @@ namespace viscofilm
       void
       parse_parameters(ParameterHandler &prm);
 
+      /// semi-Lagrangian: bounded (doc/numerics.md). thesis: GLS, and
+      /// softening by the same Galerkin diffusion.
+      bool bounded = true;
       /// constant: τ = GLS parameter (the thesis: 1). standard: τ = GLS
       /// parameter × (4/k² + (2|u|/h)²)^(-1/2).
       bool   standard_tau  = false;
@@ -54,12 +63,17 @@ namespace viscofilm
     void
     interpolate(const Function<2> &initial);
 
-    /// MODEL.md §3 step 3: φ^{n+1} from φ^n with the velocity of @p stokes,
-    /// GLS-stabilised Galerkin with the φ-scaled diffusion D φ^n ∇φ; φ takes
-    /// each boundary's Volume fraction where the flow enters. Returns the
-    /// GMRES iteration count.
+    /// MODEL.md §3 step 3: φ^{n+1} from φ^n with the velocity of @p stokes
+    /// and the φ-scaled diffusion D φ^n ∇φ; φ takes each boundary's Volume
+    /// fraction where the flow enters. Bounded: semi-Lagrangian along the
+    /// feet of φ's nodes (traced by @p feet with u^{n+1}), clipped, then the
+    /// bounded diffusion step and the mass fixer. Thesis: GLS-stabilised
+    /// Galerkin. Returns the linear solver's iteration count.
     unsigned int
-    advance(const StokesSolver &stokes, const double diffusion, const double time_step);
+    advance(const StokesSolver &stokes,
+            DepartureFeet &     feet,
+            const double        diffusion,
+            const double        time_step);
 
     /// Eq. 2.50: @p n_steps implicit Euler steps of ∂φ/∂t = ∇·(D φ ∇φ).
     void
@@ -98,11 +112,47 @@ namespace viscofilm
     range() const;
 
   private:
-    /// One implicit step; without @p stokes: pure φ-scaled diffusion.
+    /// The thesis' step, implicit; without @p stokes: pure φ-scaled diffusion.
     unsigned int
-    step(const StokesSolver *stokes, const double diffusion, const double time_step);
+    gls_step(const StokesSolver *stokes, const double diffusion, const double time_step);
 
-    /// Hanging nodes, and φ = boundary value on faces where u·n < 0.
+    /// system_matrix φ = system_rhs by GMRES, then the constraints.
+    unsigned int
+    solve();
+
+    /// The bounded scheme's advection: φ := φ^n at the feet of the nodes,
+    /// clipped to the nodal range of the cell holding the foot, which goes
+    /// to @p lower and @p upper.
+    void
+    semi_lagrangian_step(const StokesSolver &           stokes,
+                         DepartureFeet &                feet,
+                         const double                   time_step,
+                         TrilinosWrappers::MPI::Vector &lower,
+                         TrilinosWrappers::MPI::Vector &upper);
+
+    /// One implicit Euler step of ∂φ/∂t = ∇·(D φ^n ∇φ) with lumped mass and
+    /// the stiffness of the Q1 sub-cells of the Q2 nodes, discretely
+    /// upwinded: an M-matrix, so φ stays in the range of φ^n and the
+    /// constraints' values. Returns the iteration count.
+    unsigned int
+    bounded_diffusion_step(const double diffusion, const double time_step);
+
+    /// Add λ c_i, c_i = (φ_i − l_i)(u_i − φ_i)/(u_i − l_i), to the free
+    /// nodes so that ∫φ = @p mass; |λ| <= 1 keeps φ_i in [l_i, u_i] (l =
+    /// @p lower, u = @p upper), so mass goes only where φ is between its
+    /// bounds: at fronts. (With |λ| = 1 some mass may still be missing.)
+    void
+    restore_mass(const double                         mass,
+                 const TrilinosWrappers::MPI::Vector &lower,
+                 const TrilinosWrappers::MPI::Vector &upper);
+
+    /// ∫_∂Ω φ u·n ds with the velocity of @p stokes.
+    double
+    boundary_flux(const StokesSolver &stokes) const;
+
+    /// Hanging nodes, and φ = boundary value on faces where the flow enters
+    /// (their mean u·n below −1e-8 max|u|, so that round-off on a wall is
+    /// no inflow).
     void
     make_constraints(const StokesSolver *stokes);
 
@@ -113,6 +163,12 @@ namespace viscofilm
     DoFHandler<2>             dofs;
     AffineConstraints<double> constraints;
     IndexSet                  locally_relevant_dofs;
+
+    /// Inflow faces (Triangulation face index) and their φ, from
+    /// make_constraints(): a foot on one of them takes that value.
+    std::map<unsigned int, double> inflow_faces;
+    /// Range and mass before a mesh change (bounded scheme), restored after.
+    std::optional<std::array<double, 3>> before_transfer;
 
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;
