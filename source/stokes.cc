@@ -21,6 +21,7 @@
 #include <viscofilm/input.h>
 #include <viscofilm/stokes.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace viscofilm
@@ -416,9 +417,18 @@ namespace viscofilm
           if (coefficients.elastic_stress)
             coefficients.elastic_stress(cell, tau);
 
-          // With the matrix current, the cell matrix is needed only where
-          // inhomogeneous boundary values enter the right-hand side.
-          const bool need_matrix = assemble_matrix || cell->at_boundary();
+          // With the matrix current, the cell matrix is needed only to move
+          // the inhomogeneities of constrained dofs to the right-hand side:
+          // boundary values, and hanging dofs constrained to boundary dofs,
+          // which interior cells touching the wall at a vertex also hold.
+          cell->get_dof_indices(local_dof_indices);
+          const bool need_matrix =
+            assemble_matrix ||
+            std::any_of(local_dof_indices.begin(),
+                        local_dof_indices.end(),
+                        [this](const types::global_dof_index i) {
+                          return constraints.is_inhomogeneously_constrained(i);
+                        });
           cell_matrix = 0;
           cell_mass   = 0;
           cell_rhs    = 0;
@@ -456,7 +466,6 @@ namespace viscofilm
                 }
             }
 
-          cell->get_dof_indices(local_dof_indices);
           if (assemble_matrix)
             {
               if (direct)
