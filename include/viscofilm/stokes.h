@@ -70,7 +70,7 @@ namespace viscofilm
       Method          method         = Method::block_preconditioned;
       double          tolerance      = 1e-8;
       unsigned int    max_iterations = 1000;
-      Averaging       averaging      = Averaging::harmonic;
+      Averaging       averaging      = Averaging::none;
       PressureElement pressure_element = PressureElement::continuous;
 
       /// The block preconditioner's parts (Method = block preconditioned).
