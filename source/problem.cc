@@ -278,6 +278,7 @@ namespace viscofilm
     statistics.set("picard_stress_change", report.picard_stress_change);
     statistics.set("transport_iterations", report.transport_iterations);
     statistics.set("max_velocity", max_velocity);
+    statistics.set("max_cell_divergence", stokes.max_cell_divergence());
     statistics.set("volume_fraction_integral", volume_fraction.integral());
     const auto [phi_min, phi_max] = volume_fraction.range();
     statistics.set("volume_fraction_min", phi_min);

@@ -3,6 +3,7 @@
 #include <deal.II/dofs/dof_renumbering.h>
 #include <deal.II/dofs/dof_tools.h>
 
+#include <deal.II/fe/fe_dgp.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q1.h>
@@ -21,6 +22,7 @@
 #include <viscofilm/input.h>
 #include <viscofilm/stokes.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace viscofilm
@@ -80,11 +82,13 @@ namespace viscofilm
         const TrilinosWrappers::SparseMatrix &     weighted_mass,
         const TrilinosWrappers::PreconditionAMG &  velocity_amg,
         const TrilinosWrappers::PreconditionJacobi &mass_jacobi,
+        const StokesSolver::Parameters &            parameters,
         const bool                                  expensive)
         : system_matrix(system_matrix)
         , weighted_mass(weighted_mass)
         , velocity_amg(velocity_amg)
         , mass_jacobi(mass_jacobi)
+        , parameters(parameters)
         , expensive(expensive)
       {}
 
@@ -95,7 +99,9 @@ namespace viscofilm
         // Pressure: −S z_p = r_p with S ≈ (1/η) M_p. A loose inner tolerance
         // suffices: the mass matrix is only an approximation of S anyway.
         {
-          SolverControl control(200, 1e-3 * src.block(1).l2_norm());
+          SolverControl control(parameters.schur_inner_iterations,
+                                parameters.schur_inner_tolerance *
+                                  src.block(1).l2_norm());
           SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
           dst.block(1) = 0;
           if (src.block(1).l2_norm() > 0)
@@ -109,7 +115,9 @@ namespace viscofilm
           rhs.sadd(-1.0, src.block(0));
           if (expensive)
             {
-              SolverControl control(1000, 1e-2 * rhs.l2_norm());
+              SolverControl control(parameters.velocity_inner_iterations,
+                                    parameters.velocity_inner_tolerance *
+                                      rhs.l2_norm());
               SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
               dst.block(0) = 0;
               cg.solve(system_matrix.block(0, 0), dst.block(0), rhs, velocity_amg);
@@ -124,6 +132,7 @@ namespace viscofilm
       const TrilinosWrappers::SparseMatrix &      weighted_mass;
       const TrilinosWrappers::PreconditionAMG &   velocity_amg;
       const TrilinosWrappers::PreconditionJacobi &mass_jacobi;
+      const StokesSolver::Parameters &            parameters;
       const bool                                  expensive;
     };
 
@@ -158,6 +167,15 @@ namespace viscofilm
                                                             std::exp(sum / weight));
       std::fill(viscosity.begin(), viscosity.end(), mean);
     }
+
+
+    std::unique_ptr<FiniteElement<2>>
+    pressure_element(const StokesSolver::PressureElement element)
+    {
+      if (element == StokesSolver::PressureElement::discontinuous)
+        return std::make_unique<FE_DGP<2>>(1);
+      return std::make_unique<FE_Q<2>>(1);
+    }
   } // namespace
 
 
@@ -185,11 +203,77 @@ namespace viscofilm
                       "Maximum FGMRES iterations before the run stops with an "
                       "error.");
     prm.declare_entry("Viscosity averaging",
-                      "harmonic",
+                      "none",
                       Patterns::Selection("none|arithmetic|harmonic|geometric"),
-                      "Replace η(φ) in each cell by its cell mean (ASPECT's "
-                      "trick against large viscosity contrasts); none uses η at "
-                      "every quadrature point. See doc/performance.md.");
+                      "none: η(φ) at every quadrature point. The others "
+                      "replace it in each cell by its cell mean (ASPECT's "
+                      "trick against large viscosity contrasts), which changes "
+                      "the model by O(Δx) at the biofilm's edge: on the bulb at "
+                      "Δx = 1/32 harmonic averaging triples the error for the "
+                      "same solver cost (doc/numerics.md); at ratios of 1e4 "
+                      "it saves a fifth of the iterations (doc/performance.md).");
+    prm.declare_entry("Pressure element",
+                      "continuous",
+                      Patterns::Selection("continuous|discontinuous"),
+                      "continuous: Q2 × Q1 Taylor–Hood (the thesis), which "
+                      "leaves a cell-wise divergence of up to 0.4 max|u| at the "
+                      "biofilm's edge. discontinuous: Q2 × P1disc (ASPECT's "
+                      "locally conservative discretisation), whose pressure may "
+                      "jump between cells as the true one does at the viscosity "
+                      "jump: ∫_K ∇·u = 0 on every cell K. See doc/numerics.md.");
+    prm.enter_subsection("Preconditioner");
+    prm.declare_entry("Krylov basis",
+                      "100",
+                      Patterns::Integer(1),
+                      "FGMRES restart length (vectors kept), >= 1.");
+    prm.declare_entry("Cheap iterations",
+                      "100",
+                      Patterns::Integer(0),
+                      "FGMRES iterations with one AMG application for the "
+                      "velocity block before the solver goes on with an inner "
+                      "CG solve per application (expensive, for hard cases), "
+                      ">= 0.");
+    prm.declare_entry("AMG cycle",
+                      "W",
+                      Patterns::Selection("V|W"),
+                      "Multigrid cycle of the velocity block's AMG (Trilinos ML).");
+    prm.declare_entry("AMG cycles",
+                      "2",
+                      Patterns::Integer(1),
+                      "AMG cycles per application, >= 1. Two W-cycles keep "
+                      "FGMRES below 40 iterations up to Δx = 1/256 at viscosity "
+                      "ratio 1e4 (doc/performance.md).");
+    prm.declare_entry("AMG smoother sweeps",
+                      "2",
+                      Patterns::Integer(1),
+                      "Smoother sweeps on each AMG level, >= 1.");
+    prm.declare_entry("AMG aggregation threshold",
+                      "0.02",
+                      Patterns::Double(0, 1),
+                      "Couplings weaker than this (relative) are dropped when "
+                      "ML builds the coarse levels, in [0, 1].");
+    prm.declare_entry("Velocity inner tolerance",
+                      "1e-2",
+                      Patterns::Double(0, 1),
+                      "Relative tolerance of the inner CG solve of the velocity "
+                      "block in the expensive iterations, in (0, 1).");
+    prm.declare_entry("Velocity inner iterations",
+                      "1000",
+                      Patterns::Integer(1),
+                      "Iterations of the velocity block's inner CG solve at "
+                      "most, >= 1.");
+    prm.declare_entry("Schur inner tolerance",
+                      "1e-3",
+                      Patterns::Double(0, 1),
+                      "Relative tolerance of the inner CG solve with the "
+                      "1/η-weighted pressure mass matrix (the Schur complement's "
+                      "stand-in), in (0, 1).");
+    prm.declare_entry("Schur inner iterations",
+                      "200",
+                      Patterns::Integer(1),
+                      "Iterations of the inner CG solve with the weighted "
+                      "pressure mass matrix at most, >= 1.");
+    prm.leave_subsection();
     prm.leave_subsection();
   }
 
@@ -209,9 +293,30 @@ namespace viscofilm
                  a == "arithmetic" ? Averaging::arithmetic :
                  a == "harmonic"   ? Averaging::harmonic :
                                      Averaging::geometric);
+    pressure_element = (prm.get("Pressure element") == "discontinuous" ?
+                          PressureElement::discontinuous :
+                          PressureElement::continuous);
+    prm.enter_subsection("Preconditioner");
+    krylov_basis              = prm.get_integer("Krylov basis");
+    cheap_iterations          = prm.get_integer("Cheap iterations");
+    amg_w_cycle               = (prm.get("AMG cycle") == "W");
+    amg_cycles                = prm.get_integer("AMG cycles");
+    amg_smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
+    amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
+    velocity_inner_tolerance  = prm.get_double("Velocity inner tolerance");
+    velocity_inner_iterations = prm.get_integer("Velocity inner iterations");
+    schur_inner_tolerance     = prm.get_double("Schur inner tolerance");
+    schur_inner_iterations    = prm.get_integer("Schur inner iterations");
+    prm.leave_subsection();
     prm.leave_subsection();
     check_input(tolerance > 0,
                 "Stokes solver/Tolerance must be in (0, 1), got 0");
+    check_input(velocity_inner_tolerance > 0,
+                "Stokes solver/Preconditioner/Velocity inner tolerance must be "
+                "in (0, 1), got 0");
+    check_input(schur_inner_tolerance > 0,
+                "Stokes solver/Preconditioner/Schur inner tolerance must be in "
+                "(0, 1), got 0");
   }
 
 
@@ -225,7 +330,7 @@ namespace viscofilm
     , model(model)
     , boundary_conditions(boundary_conditions)
     , mpi_communicator(triangulation.get_communicator())
-    , fe(FE_Q<2>(2), 2, FE_Q<2>(1), 1)
+    , fe(FE_Q<2>(2), 2, *pressure_element(parameters.pressure_element), 1)
     , dofs(triangulation)
     , flow_postprocessor(std::make_unique<FlowPostprocessor>())
   {}
@@ -416,9 +521,18 @@ namespace viscofilm
           if (coefficients.elastic_stress)
             coefficients.elastic_stress(cell, tau);
 
-          // With the matrix current, the cell matrix is needed only where
-          // inhomogeneous boundary values enter the right-hand side.
-          const bool need_matrix = assemble_matrix || cell->at_boundary();
+          // With the matrix current, the cell matrix is needed only to move
+          // the inhomogeneities of constrained dofs to the right-hand side:
+          // boundary values, and hanging dofs constrained to boundary dofs,
+          // which interior cells touching the wall at a vertex also hold.
+          cell->get_dof_indices(local_dof_indices);
+          const bool need_matrix =
+            assemble_matrix ||
+            std::any_of(local_dof_indices.begin(),
+                        local_dof_indices.end(),
+                        [this](const types::global_dof_index i) {
+                          return constraints.is_inhomogeneously_constrained(i);
+                        });
           cell_matrix = 0;
           cell_mass   = 0;
           cell_rhs    = 0;
@@ -456,7 +570,6 @@ namespace viscofilm
                 }
             }
 
-          cell->get_dof_indices(local_dof_indices);
           if (assemble_matrix)
             {
               if (direct)
@@ -543,13 +656,10 @@ namespace viscofilm
                                      amg_data.constant_modes);
     amg_data.elliptic              = true;
     amg_data.higher_order_elements = true;
-    amg_data.smoother_sweeps       = 2;
-    amg_data.aggregation_threshold = 0.02;
-    // Two W-cycles instead of one V-cycle: the outer FGMRES iterations then
-    // stay below 40 up to Δx = 1/256 at viscosity ratio 1e4 (57-84 with one
-    // V-cycle), and the whole solve gets faster there (doc/performance.md).
-    amg_data.w_cycle  = true;
-    amg_data.n_cycles = 2;
+    amg_data.smoother_sweeps       = parameters.amg_smoother_sweeps;
+    amg_data.aggregation_threshold = parameters.amg_aggregation_threshold;
+    amg_data.w_cycle               = parameters.amg_w_cycle;
+    amg_data.n_cycles              = parameters.amg_cycles;
     velocity_amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
     velocity_amg->initialize(system_matrix.block(0, 0), amg_data);
 
@@ -592,19 +702,22 @@ namespace viscofilm
         constraints.set_zero(distributed);
         // Cheap iterations first; if they stall, go on from where they got
         // with expensive ones (ASPECT's strategy).
-        const unsigned int n_cheap = std::min(parameters.max_iterations, 100u);
+        const unsigned int n_cheap =
+          std::min(parameters.max_iterations, parameters.cheap_iterations);
         for (const bool expensive : {false, true})
           {
             SolverControl control(expensive ? parameters.max_iterations : n_cheap,
                                   parameters.tolerance * rhs_norm);
             SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(
               control,
-              SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(100));
+              SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(
+                parameters.krylov_basis));
             const BlockSchurPreconditioner preconditioner(
               system_matrix,
               preconditioner_matrix.block(1, 1),
               *velocity_amg,
               *mass_jacobi,
+              parameters,
               expensive);
             try
               {
@@ -693,7 +806,17 @@ namespace viscofilm
     current_solution = distributed;
     const double mean_pressure =
       VectorTools::compute_mean_value(dofs, QGauss<2>(3), current_solution, 2);
-    distributed.block(1).add(-mean_pressure);
+    // The dofs whose shape functions sum to 1: all of Q1's, the cell mean
+    // of P1disc's (its slopes must stay).
+    std::vector<std::vector<bool>> constant_modes;
+    DoFTools::extract_constant_modes(dofs,
+                                     fe.component_mask(FEValuesExtractors::Scalar(2)),
+                                     constant_modes);
+    const IndexSet &owned_pressure = owned_partitioning[1];
+    for (unsigned int i = 0; i < owned_pressure.n_elements(); ++i)
+      if (constant_modes[0][i])
+        distributed.block(1)(owned_pressure.nth_index_in_set(i)) -= mean_pressure;
+    distributed.compress(VectorOperation::add);
   }
 
 
@@ -788,6 +911,28 @@ namespace viscofilm
             max_speed = std::max(max_speed, u.norm());
         }
     return Utilities::MPI::max(max_speed, mpi_communicator);
+  }
+
+
+  double
+  StokesSolver::max_cell_divergence() const
+  {
+    const QGauss<2>                  quadrature(fe.degree + 1);
+    FEValues<2>                      fe_values(fe, quadrature, update_gradients | update_JxW_values);
+    std::vector<double>              divergence(quadrature.size());
+    const FEValuesExtractors::Vector velocities(0);
+    double                           max_divergence = 0;
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[velocities].get_function_divergences(current_solution, divergence);
+          double integral = 0;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            integral += divergence[q] * fe_values.JxW(q);
+          max_divergence = std::max(max_divergence, std::abs(integral) / cell->measure());
+        }
+    return Utilities::MPI::max(max_divergence, mpi_communicator);
   }
 
 

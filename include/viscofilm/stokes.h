@@ -53,6 +53,13 @@ namespace viscofilm
       geometric   // cell geometric mean of η
     };
 
+    /// The pressure space of the Taylor–Hood pair.
+    enum class PressureElement
+    {
+      continuous,   // Q2 × Q1
+      discontinuous // Q2 × P1disc: each cell conserves mass
+    };
+
     struct Parameters
     {
       static void
@@ -60,10 +67,23 @@ namespace viscofilm
       void
       parse_parameters(ParameterHandler &prm);
 
-      Method       method         = Method::block_preconditioned;
-      double       tolerance      = 1e-8;
-      unsigned int max_iterations = 1000;
-      Averaging    averaging      = Averaging::harmonic;
+      Method          method         = Method::block_preconditioned;
+      double          tolerance      = 1e-8;
+      unsigned int    max_iterations = 1000;
+      Averaging       averaging      = Averaging::none;
+      PressureElement pressure_element = PressureElement::continuous;
+
+      /// The block preconditioner's parts (Method = block preconditioned).
+      unsigned int krylov_basis        = 100;  // FGMRES restart length
+      unsigned int cheap_iterations    = 100;  // with one AMG application
+      bool         amg_w_cycle         = true;
+      unsigned int amg_cycles          = 2;
+      unsigned int amg_smoother_sweeps = 2;
+      double       amg_aggregation_threshold = 0.02;
+      double       velocity_inner_tolerance  = 1e-2; // expensive iterations
+      unsigned int velocity_inner_iterations = 1000;
+      double       schur_inner_tolerance     = 1e-3;
+      unsigned int schur_inner_iterations    = 200;
     };
 
     /// τ at the quadrature points of a cell, for the elastic stress term
@@ -147,6 +167,12 @@ namespace viscofilm
     /// max |u| over the Q2 nodes.
     double
     max_velocity() const;
+
+    /// max over the cells K of |∫_K ∇·u| / |K|: zero up to the solver
+    /// tolerance with the discontinuous pressure, which conserves mass in
+    /// each cell; not so with the continuous one.
+    double
+    max_cell_divergence() const;
 
     /// Kelly's indicator of the velocity per active cell (zero on cells not
     /// owned here): (h/24 Σ_faces ∫ |[∂u/∂n]|²)^½, the jump of the velocity
