@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace viscofilm
 {
@@ -476,6 +477,48 @@ namespace viscofilm
 
 
   void
+  VolumeFraction::bound_hanging_nodes(TrilinosWrappers::MPI::Vector &distributed,
+                                      const double                   low,
+                                      const double                   high) const
+  {
+    TrilinosWrappers::MPI::Vector ghosted(dofs.locally_owned_dofs(),
+                                          locally_relevant_dofs,
+                                          mpi_communicator);
+    ghosted = distributed;
+    // The owner of a master sees every hanging node that depends on it (they
+    // lie on cells next to its own), so each rank shifts the masters it owns.
+    std::map<types::global_dof_index, double> shifts;
+    for (const auto &line : constraints.get_lines())
+      {
+        if (line.entries.empty() ||
+            !std::all_of(line.entries.begin(), line.entries.end(), [&](const auto &entry) {
+              return locally_relevant_dofs.is_element(entry.first);
+            }))
+          continue;
+        double value = line.inhomogeneity;
+        for (const auto &[dof, weight] : line.entries)
+          value += weight * ghosted[dof];
+        if (value >= low && value <= high)
+          continue;
+        const auto &[master, weight] =
+          *std::max_element(line.entries.begin(),
+                            line.entries.end(),
+                            [](const auto &a, const auto &b) { return a.second < b.second; });
+        if (weight <= 0 || !dofs.locally_owned_dofs().is_element(master))
+          continue;
+        const double needed = ((value < low ? low : high) - value) / weight;
+        auto [shift, inserted] = shifts.emplace(master, needed);
+        if (!inserted)
+          shift->second = (needed > 0 ? std::max(shift->second, needed) :
+                                        std::min(shift->second, needed));
+      }
+    for (const auto &[master, shift] : shifts)
+      distributed[master] = std::clamp(distributed[master] + shift, low, high);
+    constraints.distribute(distributed);
+  }
+
+
+  void
   VolumeFraction::restore_mass(const double                         mass,
                                const TrilinosWrappers::MPI::Vector &lower,
                                const TrilinosWrappers::MPI::Vector &upper)
@@ -505,6 +548,17 @@ namespace viscofilm
 
     TrilinosWrappers::MPI::Vector distributed(owned, mpi_communicator);
     distributed = current_solution;
+    double low  = std::numeric_limits<double>::max();
+    double high = std::numeric_limits<double>::lowest();
+    for (const auto i : owned)
+      if (!constraints.is_constrained(i))
+        {
+          low  = std::min(low, static_cast<double>(lower[i]));
+          high = std::max(high, static_cast<double>(upper[i]));
+        }
+    bound_hanging_nodes(distributed,
+                        Utilities::MPI::min(low, mpi_communicator),
+                        Utilities::MPI::max(high, mpi_communicator));
     TrilinosWrappers::MPI::Vector room(owned, mpi_communicator);
     for (const auto i : owned)
       if (!constraints.is_constrained(i) && upper[i] > lower[i])
@@ -562,6 +616,20 @@ namespace viscofilm
                                               mpi_communicator);
     VectorTools::interpolate(dofs, initial, distributed);
     constraints.distribute(distributed);
+    if (parameters.bounded)
+      {
+        double low  = std::numeric_limits<double>::max();
+        double high = std::numeric_limits<double>::lowest();
+        for (const auto i : dofs.locally_owned_dofs())
+          if (!constraints.is_constrained(i))
+            {
+              low  = std::min(low, static_cast<double>(distributed[i]));
+              high = std::max(high, static_cast<double>(distributed[i]));
+            }
+        bound_hanging_nodes(distributed,
+                            Utilities::MPI::min(low, mpi_communicator),
+                            Utilities::MPI::max(high, mpi_communicator));
+      }
     current_solution = distributed;
   }
 
