@@ -477,10 +477,22 @@ namespace viscofilm
 
 
   void
-  VolumeFraction::bound_hanging_nodes(TrilinosWrappers::MPI::Vector &distributed,
-                                      const double                   low,
-                                      const double                   high) const
+  VolumeFraction::bound_hanging_nodes(TrilinosWrappers::MPI::Vector &      distributed,
+                                      const TrilinosWrappers::MPI::Vector &lower,
+                                      const TrilinosWrappers::MPI::Vector &upper) const
   {
+    // The range: the smallest lower and largest upper bound of the free nodes.
+    double low  = std::numeric_limits<double>::max();
+    double high = std::numeric_limits<double>::lowest();
+    for (const auto i : dofs.locally_owned_dofs())
+      if (!constraints.is_constrained(i))
+        {
+          low  = std::min(low, static_cast<double>(lower[i]));
+          high = std::max(high, static_cast<double>(upper[i]));
+        }
+    low  = Utilities::MPI::min(low, mpi_communicator);
+    high = Utilities::MPI::max(high, mpi_communicator);
+
     TrilinosWrappers::MPI::Vector ghosted(dofs.locally_owned_dofs(),
                                           locally_relevant_dofs,
                                           mpi_communicator);
@@ -548,17 +560,7 @@ namespace viscofilm
 
     TrilinosWrappers::MPI::Vector distributed(owned, mpi_communicator);
     distributed = current_solution;
-    double low  = std::numeric_limits<double>::max();
-    double high = std::numeric_limits<double>::lowest();
-    for (const auto i : owned)
-      if (!constraints.is_constrained(i))
-        {
-          low  = std::min(low, static_cast<double>(lower[i]));
-          high = std::max(high, static_cast<double>(upper[i]));
-        }
-    bound_hanging_nodes(distributed,
-                        Utilities::MPI::min(low, mpi_communicator),
-                        Utilities::MPI::max(high, mpi_communicator));
+    bound_hanging_nodes(distributed, lower, upper);
     TrilinosWrappers::MPI::Vector room(owned, mpi_communicator);
     for (const auto i : owned)
       if (!constraints.is_constrained(i) && upper[i] > lower[i])
@@ -617,19 +619,7 @@ namespace viscofilm
     VectorTools::interpolate(dofs, initial, distributed);
     constraints.distribute(distributed);
     if (parameters.bounded)
-      {
-        double low  = std::numeric_limits<double>::max();
-        double high = std::numeric_limits<double>::lowest();
-        for (const auto i : dofs.locally_owned_dofs())
-          if (!constraints.is_constrained(i))
-            {
-              low  = std::min(low, static_cast<double>(distributed[i]));
-              high = std::max(high, static_cast<double>(distributed[i]));
-            }
-        bound_hanging_nodes(distributed,
-                            Utilities::MPI::min(low, mpi_communicator),
-                            Utilities::MPI::max(high, mpi_communicator));
-      }
+      bound_hanging_nodes(distributed, distributed, distributed);
     current_solution = distributed;
   }
 

@@ -138,14 +138,15 @@ namespace viscofilm
     bounded_diffusion_step(const double diffusion, const double time_step);
 
     /// Hanging nodes take the coarse edge's Q2 interpolant, whose weights
-    /// (3/8, 3/4, −1/8) leave [@p low, @p high] at a front: shift each such
+    /// (3/8, 3/4, −1/8) leave the data's range at a front: shift each such
     /// node's heaviest master (the coarse edge's midpoint) just enough to
-    /// bring it back, within [@p low, @p high]. @p distributed: owned values
-    /// with the constraints distributed; they are distributed again.
+    /// bring it back, within the range. The range is [min @p lower, max
+    /// @p upper] over the free nodes. @p distributed: owned values with the
+    /// constraints distributed; they are distributed again.
     void
-    bound_hanging_nodes(TrilinosWrappers::MPI::Vector &distributed,
-                        const double                   low,
-                        const double                   high) const;
+    bound_hanging_nodes(TrilinosWrappers::MPI::Vector &      distributed,
+                        const TrilinosWrappers::MPI::Vector &lower,
+                        const TrilinosWrappers::MPI::Vector &upper) const;
 
     /// Add λ c_i, c_i = (φ_i − l_i)(u_i − φ_i)/(u_i − l_i), to the free
     /// nodes so that ∫φ = @p mass; |λ| <= 1 keeps φ_i in [l_i, u_i] (l =
