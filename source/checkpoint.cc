@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -20,6 +21,26 @@ namespace viscofilm
 {
   namespace
   {
+    /// Run @p files (file system work) on rank 0 only; if it throws, every
+    /// rank throws the same message, so that none waits in a collective
+    /// call for a rank that has given up.
+    void
+    on_rank_zero(const MPI_Comm comm, const std::function<void()> &files)
+    {
+      std::string error;
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        try
+          {
+            files();
+          }
+        catch (const std::exception &e)
+          {
+            error = std::string("checkpoint: ") + e.what();
+          }
+      error = Utilities::MPI::broadcast(comm, error, 0);
+      AssertThrow(error.empty(), ExcMessage(error));
+    }
+
     /// The entries that may differ when a run is resumed: where, what and
     /// how often it writes, how far it goes, and caps whose reaching stops
     /// the run instead of changing its solution. Every other declared entry
@@ -138,12 +159,10 @@ namespace viscofilm
   Checkpoint::begin() const
   {
     const std::string staging = directory + ".new";
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      {
-        std::filesystem::remove_all(staging);
-        std::filesystem::create_directories(staging);
-      }
-    MPI_Barrier(mpi_communicator);
+    on_rank_zero(mpi_communicator, [&]() {
+      std::filesystem::remove_all(staging);
+      std::filesystem::create_directories(staging);
+    });
     return staging + "/mesh";
   }
 
@@ -151,29 +170,27 @@ namespace viscofilm
   void
   Checkpoint::commit(const State &state, const ParameterHandler &prm) const
   {
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+    on_rank_zero(mpi_communicator, [&]() {
+      const std::string staging = directory + ".new";
       {
-        const std::string staging = directory + ".new";
-        {
-          std::ofstream out(staging + "/state");
-          out << std::setprecision(17) << "step " << state.step << "\ntime "
-              << state.time << "\n";
-          for (const auto &[path, value] : critical_entries(prm))
-            out << "parameter " << path << " = " << value << "\n";
-          out << "snapshots\n";
-          boost::archive::text_oarchive archive(out);
-          archive << state.snapshots;
-        }
-        // Swap in the new checkpoint; until the first rename the old one is
-        // whole, after it the new one is.
-        const std::string previous = directory + ".old";
-        std::filesystem::remove_all(previous);
-        if (std::filesystem::exists(directory))
-          std::filesystem::rename(directory, previous);
-        std::filesystem::rename(staging, directory);
-        std::filesystem::remove_all(previous);
+        std::ofstream out(staging + "/state");
+        out << std::setprecision(17) << "step " << state.step << "\ntime "
+            << state.time << "\n";
+        for (const auto &[path, value] : critical_entries(prm))
+          out << "parameter " << path << " = " << value << "\n";
+        out << "snapshots\n";
+        boost::archive::text_oarchive archive(out);
+        archive << state.snapshots;
       }
-    MPI_Barrier(mpi_communicator);
+      // Swap in the new checkpoint; until the first rename the old one is
+      // whole, after it the new one is.
+      const std::string previous = directory + ".old";
+      std::filesystem::remove_all(previous);
+      if (std::filesystem::exists(directory))
+        std::filesystem::rename(directory, previous);
+      std::filesystem::rename(staging, directory);
+      std::filesystem::remove_all(previous);
+    });
   }
 
 
@@ -182,25 +199,24 @@ namespace viscofilm
   {
     // Rank 0 reads; every rank gets the text (and so the same verdict).
     std::string text;
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      {
-        // Stopped between the two renames of commit(): the last checkpoint
-        // is whole under its old name. Restore it, so that the next commit
-        // does not delete it.
-        const std::string previous = directory + ".old";
-        if (!std::filesystem::exists(directory) &&
-            std::filesystem::exists(previous + "/state"))
-          {
-            std::filesystem::rename(previous, directory);
-            std::cout << "The last checkpoint's commit was interrupted: resuming "
-                         "from the one before it, "
-                      << previous << std::endl;
-          }
-        std::ifstream in(directory + "/state");
-        std::ostringstream contents;
-        contents << in.rdbuf();
-        text = in ? contents.str() : "";
-      }
+    on_rank_zero(mpi_communicator, [&]() {
+      // Stopped between the two renames of commit(): the last checkpoint
+      // is whole under its old name. Restore it, so that the next commit
+      // does not delete it.
+      const std::string previous = directory + ".old";
+      if (!std::filesystem::exists(directory) &&
+          std::filesystem::exists(previous + "/state"))
+        {
+          std::filesystem::rename(previous, directory);
+          std::cout << "The last checkpoint's commit was interrupted: resuming "
+                       "from the one before it, "
+                    << previous << std::endl;
+        }
+      std::ifstream in(directory + "/state");
+      std::ostringstream contents;
+      contents << in.rdbuf();
+      text = in ? contents.str() : "";
+    });
     text = Utilities::MPI::broadcast(mpi_communicator, text, 0);
     check_input(!text.empty(),
                 "Checkpointing/Resume: there is no checkpoint in \"" + directory +

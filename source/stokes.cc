@@ -416,8 +416,9 @@ namespace viscofilm
     boundary_conditions.constrain_velocity(dofs, time, constraints);
 
     // A factorisation needs a nonsingular matrix: without an outflow boundary
-    // pin the first pressure dof (a coarse-mesh vertex, never hanging); the
-    // pressure is shifted to mean zero after the solve.
+    // pin the first pressure dof (Q1: a coarse-mesh vertex, never hanging;
+    // P1disc: the mean of rank 0's first cell); the pressure is shifted to
+    // mean zero after the solve.
     if (parameters.method != Method::block_preconditioned &&
         !boundary_conditions.has_outflow())
       {

@@ -382,7 +382,8 @@ namespace viscofilm
         distributed[nodes[i].dofs[2]] = c[1][1];
       }
     distributed.compress(VectorOperation::insert);
-    // A continuous c is continuous at hanging nodes too.
+    // A continuous c is continuous at hanging nodes too, except where the
+    // repair below lifts a hanging node (by the repair's size, counted).
     hanging_node_constraints.distribute(distributed);
     constraint_repairs = repair_positivity(distributed);
     const TrilinosWrappers::MPI::Vector previous = current;
@@ -442,8 +443,10 @@ namespace viscofilm
                                                         distributed[node.dofs[2]]);
             if (smallest < floor)
               {
-                distributed[node.dofs[0]] += floor - smallest;
-                distributed[node.dofs[2]] += floor - smallest;
+                // Written, not added: every rank compresses with insert.
+                const double lift          = floor - smallest;
+                distributed[node.dofs[0]] = distributed[node.dofs[0]] + lift;
+                distributed[node.dofs[2]] = distributed[node.dofs[2]] + lift;
                 ++repairs;
               }
           }

@@ -519,10 +519,11 @@ namespace viscofilm
         if (weight <= 0 || !dofs.locally_owned_dofs().is_element(master))
           continue;
         const double needed = ((value < low ? low : high) - value) / weight;
+        // One master may be asked to rise by one hanging node and to fall
+        // by another (a front along the edge both ways): the larger need wins.
         auto [shift, inserted] = shifts.emplace(master, needed);
-        if (!inserted)
-          shift->second = (needed > 0 ? std::max(shift->second, needed) :
-                                        std::min(shift->second, needed));
+        if (!inserted && std::abs(needed) > std::abs(shift->second))
+          shift->second = needed;
       }
     for (const auto &[master, shift] : shifts)
       distributed[master] = std::clamp(distributed[master] + shift, low, high);
