@@ -41,8 +41,12 @@ namespace viscofilm
 
   BoundaryConditions::BoundaryConditions()
   {
+    boundaries.resize(4);
     for (unsigned int b = 0; b < 4; ++b)
-      boundaries[b].name = boundary_names[b];
+      {
+        boundaries[b].name = boundary_names[b];
+        boundaries[b].id   = b;
+      }
   }
 
 
@@ -71,6 +75,12 @@ namespace viscofilm
                           Patterns::Double(0, 1),
                           "φ on the parts of this boundary where the flow "
                           "enters (u·n < 0), in [0, 1]. The thesis: 0.");
+        ParsedExpression::declare(prm,
+                                  "Stress",
+                                  "0; 0; 0",
+                                  "Elastic stress \"τxx; τxy; τyy\" carried in "
+                                  "where the flow enters (u·n < 0). 0: the "
+                                  "relaxed state.");
         prm.leave_subsection();
       }
     prm.leave_subsection();
@@ -93,6 +103,9 @@ namespace viscofilm
                                 "Boundary conditions/" + boundary.name +
                                   "/Velocity");
         boundary.volume_fraction = prm.get_double("Volume fraction");
+        boundary.stress.parse(prm.get("Stress"),
+                              prm.get("Function constants"),
+                              "Boundary conditions/" + boundary.name + "/Stress");
         prm.leave_subsection();
       }
     prm.leave_subsection();
@@ -139,6 +152,35 @@ namespace viscofilm
               VectorTools::interpolate_boundary_values(
                 dof_handler, b, velocity, constraints, mask);
           }
+  }
+
+
+  const BoundaryConditions::Boundary &
+  BoundaryConditions::boundary(const types::boundary_id id) const
+  {
+    for (const Boundary &boundary : boundaries)
+      if (boundary.id == id)
+        return boundary;
+    AssertThrow(false, ExcMessage("no boundary condition for boundary id " +
+                                  std::to_string(id)));
+    return boundaries.front();
+  }
+
+
+  types::boundary_id
+  BoundaryConditions::id(const std::string &name, const std::string &parameter) const
+  {
+    std::string known;
+    for (const Boundary &boundary : boundaries)
+      {
+        if (boundary.name == name)
+          return boundary.id;
+        known += (known.empty() ? "" : ", ") + boundary.name;
+      }
+    check_input(false,
+                parameter + ": no boundary is named \"" + name +
+                  "\"; the mesh's boundaries are " + known);
+    return 0;
   }
 
 

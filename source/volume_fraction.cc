@@ -149,7 +149,7 @@ namespace viscofilm
                   if (flux >= -tolerance)
                     continue;
                   const double value =
-                    boundary_conditions.boundaries[cell->face(f)->boundary_id()]
+                    boundary_conditions.boundary(cell->face(f)->boundary_id())
                       .volume_fraction;
                   inflow_faces[cell->face(f)->index()] = value;
                   cell->face(f)->get_dof_indices(face_dofs);

@@ -8,10 +8,11 @@
 
 #include <deal.II/lac/affine_constraints.h>
 
+#include <viscofilm/dimension.h>
 #include <viscofilm/input.h>
 
-#include <array>
 #include <string>
+#include <vector>
 
 namespace viscofilm
 {
@@ -29,10 +30,13 @@ namespace viscofilm
 
     struct Boundary
     {
-      std::string      name;
-      Type             type = Type::no_slip;
-      ParsedExpression velocity{2};
-      double           volume_fraction = 0; // φ where the flow enters
+      std::string        name;
+      types::boundary_id id   = 0;
+      Type               type = Type::no_slip;
+      ParsedExpression   velocity{dim};
+      double             volume_fraction = 0; // φ where the flow enters
+      /// τ where the flow enters (xx; xy; yy), 0: the relaxed state.
+      ParsedExpression stress{n_symmetric_components};
     };
 
     BoundaryConditions();
@@ -54,8 +58,16 @@ namespace viscofilm
     bool
     has_outflow() const;
 
-    /// Indexed by BoundaryId.
-    std::array<Boundary, 4> boundaries;
+    /// The boundary with id @p id; every boundary id of the mesh has one.
+    const Boundary &
+    boundary(const types::boundary_id id) const;
+
+    /// The id of the boundary named @p name; an unknown name throws ExcInput
+    /// naming @p parameter and the names there are.
+    types::boundary_id
+    id(const std::string &name, const std::string &parameter) const;
+
+    std::vector<Boundary> boundaries;
   };
 } // namespace viscofilm
 
