@@ -21,6 +21,7 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
+#include <viscofilm/boundary_conditions.h>
 #include <viscofilm/departure_feet.h>
 #include <viscofilm/mesh_refinement.h>
 #include <viscofilm/model.h>
@@ -63,7 +64,8 @@ namespace viscofilm
 
     ElasticStress(const parallel::distributed::Triangulation<2> &triangulation,
                   const Parameters &                             parameters,
-                  const Model &                                  model);
+                  const Model &                                  model,
+                  const BoundaryConditions &boundary_conditions);
 
     /// Distribute dofs and list the stress nodes; @p quadrature is the one
     /// the Stokes assembly asks τ at.
@@ -172,6 +174,7 @@ namespace viscofilm
     const parallel::distributed::Triangulation<2> &triangulation;
     const Parameters &                             parameters;
     const Model &                                  model;
+    const BoundaryConditions &boundary_conditions;
 
     const FESystem<2>             fe;
     DoFHandler<2>                 dofs;
