@@ -77,9 +77,12 @@ namespace viscofilm
               found = true;
               break;
             }
+        std::string point;
+        for (unsigned int d = 0; d < dim; ++d)
+          point += (d == 0 ? "" : ", ") + to_text(p[d]);
         check_input(Utilities::MPI::logical_or(found, mpi_communicator),
-                    "Output/Probe points: the point (" + to_text(p[0]) + ", " +
-                      to_text(p[1]) + ") lies in no cell of the mesh");
+                    "Output/Probe points: the point (" + point +
+                      ") lies in no cell of the mesh");
       }
   }
 
