@@ -36,7 +36,7 @@ namespace viscofilm
     stress.parse_parameters(prm);
     departure_feet.parse_parameters(prm);
     stabilization.parse_parameters(prm);
-    detachment.parse_parameters(prm);
+    detachment.parse_parameters(prm, boundary_conditions);
     output.parse_parameters(prm);
     verification.parse_parameters(prm);
     checkpointing.parse_parameters(prm);
