@@ -33,7 +33,7 @@ namespace viscofilm
                       parameters.stabilization,
                       parameters.boundary_conditions)
     , stress(triangulation, parameters.stress, parameters.model)
-    , departure_feet(parameters.departure_feet, parameters.geometry, triangulation)
+    , departure_feet(parameters.departure_feet, triangulation)
     , loads(parameters.detachment,
             parameters.model,
             stokes,
@@ -211,7 +211,7 @@ namespace viscofilm
     {
       TimerOutput::Scope t(*computing_timer, "departure feet");
       if (viscoelastic)
-        stress.trace_back(departure_feet, stokes, k);
+        stress.trace_back(departure_feet, stokes, parameters.boundary_conditions, time, k);
       stokes.trace_back(departure_feet, k);
     }
 

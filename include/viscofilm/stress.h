@@ -21,6 +21,7 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
+#include <viscofilm/boundary_conditions.h>
 #include <viscofilm/departure_feet.h>
 #include <viscofilm/mesh_refinement.h>
 #include <viscofilm/model.h>
@@ -75,11 +76,15 @@ namespace viscofilm
     void
     set_initial_conditions(const Function<2> &initial_stress);
 
-    /// MODEL.md §3 step 1: the nodes' departure feet from u^n and c^n there.
+    /// MODEL.md §3 step 1: the nodes' departure feet from u^n and c^n
+    /// there; a foot on an inflow boundary takes that boundary's Stress at
+    /// @p time (t_{n+1}) instead.
     void
-    trace_back(DepartureFeet &      feet,
-               const StokesSolver & stokes,
-               const double         time_step);
+    trace_back(DepartureFeet &           feet,
+               const StokesSolver &      stokes,
+               const BoundaryConditions &boundary_conditions,
+               const double              time,
+               const double              time_step);
 
     /// MODEL.md §3 step 2b: c^{n+1} at every node from the current Stokes
     /// iterate, φ^n and c^n at the feet (closed form, eq. 3.40-3.44).
@@ -131,6 +136,11 @@ namespace viscofilm
     /// The shift ηp/(a Wi): τ = c − shift I.
     double
     shift() const;
+
+    /// The conformation c = τ + shift I of the elastic stress @p tau
+    /// (xx, xy, yy as the Stress and Initial stress expressions give it).
+    SymmetricTensor<2, dim>
+    conformation(const Vector<double> &tau) const;
 
     /// Add tau_xx, tau_xy, tau_yy to @p data_out.
     void
