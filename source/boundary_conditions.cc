@@ -1,74 +1,141 @@
 #include <deal.II/base/function.h>
 
+#include <deal.II/dofs/dof_tools.h>
+
 #include <deal.II/fe/component_mask.h>
+
+#include <deal.II/grid/grid_tools.h>
 
 #include <deal.II/numerics/vector_tools.h>
 
 #include <viscofilm/boundary_conditions.h>
-#include <viscofilm/geometry.h>
+
+#include <map>
+#include <set>
 
 namespace viscofilm
 {
   namespace
   {
-    const std::array<const char *, 4> boundary_names = {
-      {"Inlet", "Outlet", "Bottom", "Top"}};
+    const char *type_names = "no slip|velocity|outflow|traction free|slip|pressure|periodic";
 
-    const std::array<const char *, 4> default_types = {
-      {"velocity", "outflow", "no slip", "no slip"}};
+    const std::map<std::string, BoundaryConditions::Type> types = {
+      {"no slip", BoundaryConditions::Type::no_slip},
+      {"velocity", BoundaryConditions::Type::velocity},
+      {"outflow", BoundaryConditions::Type::outflow},
+      {"traction free", BoundaryConditions::Type::traction_free},
+      {"slip", BoundaryConditions::Type::slip},
+      {"pressure", BoundaryConditions::Type::pressure},
+      {"periodic", BoundaryConditions::Type::periodic}};
 
-    /// The 2-component velocity expression seen as a 3-component (u, v, p)
+    /// The velocity expression seen as a (dim + 1)-component (u, p)
     /// function, the layout of the Stokes element.
-    class StokesVelocity : public Function<2>
+    class StokesVelocity : public Function<dim>
     {
     public:
-      StokesVelocity(const Function<2> &velocity)
-        : Function<2>(3)
+      StokesVelocity(const Function<dim> &velocity)
+        : Function<dim>(dim + 1)
         , velocity(velocity)
       {}
 
       double
-      value(const Point<2> &p, const unsigned int component) const override
+      value(const Point<dim> &p, const unsigned int component) const override
       {
-        return component < 2 ? velocity.value(p, component) : 0.0;
+        return component < dim ? velocity.value(p, component) : 0.0;
       }
 
     private:
-      const Function<2> &velocity;
+      const Function<dim> &velocity;
     };
+
+    /// The translation taking periodic boundary @p first to @p second: the
+    /// difference of their coarse faces' mean centres.
+    Tensor<1, dim>
+    periodic_offset(const Triangulation<dim> &triangulation,
+                    const types::boundary_id  first,
+                    const types::boundary_id  second)
+    {
+      Tensor<1, dim> sum[2];
+      unsigned int   n[2] = {0, 0};
+      for (const auto &cell : triangulation.cell_iterators_on_level(0))
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary() &&
+              (face->boundary_id() == first || face->boundary_id() == second))
+            {
+              const unsigned int side = (face->boundary_id() == second);
+              sum[side] += face->center();
+              ++n[side];
+            }
+      return sum[1] / std::max(1u, n[1]) - sum[0] / std::max(1u, n[0]);
+    }
+
+    /// The coordinate along which @p offset mostly points.
+    unsigned int
+    main_direction(const Tensor<1, dim> &offset)
+    {
+      unsigned int direction = 0;
+      for (unsigned int d = 1; d < dim; ++d)
+        if (std::abs(offset[d]) > std::abs(offset[direction]))
+          direction = d;
+      return direction;
+    }
   } // namespace
 
 
   BoundaryConditions::BoundaryConditions()
   {
+    const char *names[] = {"Inlet", "Outlet", "Bottom", "Top"};
+    const Type  thesis[] = {Type::velocity, Type::outflow, Type::no_slip, Type::no_slip};
     boundaries.resize(4);
     for (unsigned int b = 0; b < 4; ++b)
       {
-        boundaries[b].name = boundary_names[b];
-        boundaries[b].id   = b;
+        boundaries[b].name        = names[b];
+        boundaries[b].id          = b;
+        boundaries[b].type        = thesis[b];
+        boundaries[b].normal_axis = b / 2;
       }
   }
 
 
   void
-  BoundaryConditions::declare_parameters(ParameterHandler &prm)
+  BoundaryConditions::declare_parameters(
+    ParameterHandler &                          prm,
+    const std::vector<Geometry::NamedBoundary> &boundaries)
   {
     prm.enter_subsection("Boundary conditions");
-    for (unsigned int b = 0; b < 4; ++b)
+    for (const Geometry::NamedBoundary &boundary : boundaries)
       {
-        prm.enter_subsection(boundary_names[b]);
+        prm.enter_subsection(boundary.name);
+        // A boundary without a default Type (gmsh) accepts "" so that a
+        // missing Type gets our message, not the pattern's.
         prm.declare_entry(
           "Type",
-          default_types[b],
-          Patterns::Selection("no slip|velocity|outflow"),
-          "no slip: u = v = 0. velocity: (u, v) = Velocity. outflow: the "
-          "tangential component takes Velocity's value (v on the inlet and "
-          "outlet, u on the bottom and top), the normal one is natural "
-          "(do-nothing traction, MODEL.md §4).");
+          boundary.default_type,
+          Patterns::Selection(std::string(boundary.default_type.empty() ? "|" : "") +
+                              type_names),
+          "no slip: u = 0. velocity: u = Velocity. outflow: the tangential "
+          "velocity takes Velocity's tangential part, the normal traction is "
+          "zero (do-nothing, MODEL.md §4). traction free: σ·n = 0. slip: "
+          "u·n = 0 and zero tangential traction (a symmetry plane). pressure: "
+          "as outflow with normal traction σn·n = −Pressure. periodic: "
+          "identified with Periodic partner by a translation. Built-in meshes: "
+          "the thesis' types (Cylinder: no slip); a gmsh boundary has none and "
+          "must be given one.");
         ParsedExpression::declare(prm,
                                   "Velocity",
                                   "0; 0",
-                                  "Boundary velocity \"u; v\".");
+                                  "Boundary velocity \"u; v\" (velocity; the "
+                                  "tangential part for outflow and pressure).");
+        ParsedExpression::declare(prm,
+                                  "Pressure",
+                                  "0",
+                                  "P of Type = pressure: the normal traction "
+                                  "σn·n = −P, an expression of x, y, t.");
+        prm.declare_entry("Periodic partner",
+                          "",
+                          Patterns::Anything(),
+                          "Type = periodic: the name of the boundary this one "
+                          "is identified with (periodic too, a translate).");
         declare_function_constants(prm);
         prm.declare_entry("Volume fraction",
                           "0",
@@ -88,70 +155,185 @@ namespace viscofilm
 
 
   void
-  BoundaryConditions::parse_parameters(ParameterHandler &prm)
+  BoundaryConditions::parse_parameters(
+    ParameterHandler &                          prm,
+    const std::vector<Geometry::NamedBoundary> &named_boundaries)
   {
+    boundaries.clear();
+    boundaries.resize(named_boundaries.size());
+    std::vector<std::string> partners(boundaries.size());
     prm.enter_subsection("Boundary conditions");
-    for (Boundary &boundary : boundaries)
+    for (unsigned int b = 0; b < boundaries.size(); ++b)
       {
+        Boundary &        boundary = boundaries[b];
+        const std::string path     = "Boundary conditions/" + named_boundaries[b].name;
+        boundary.name              = named_boundaries[b].name;
+        boundary.id                = named_boundaries[b].id;
+        boundary.normal_axis       = named_boundaries[b].normal_axis;
         prm.enter_subsection(boundary.name);
         const std::string type = prm.get("Type");
-        boundary.type          = (type == "no slip" ? Type::no_slip :
-                                  type == "velocity" ? Type::velocity :
-                                                       Type::outflow);
-        boundary.velocity.parse(prm.get("Velocity"),
-                                prm.get("Function constants"),
-                                "Boundary conditions/" + boundary.name +
-                                  "/Velocity");
+        check_input(!type.empty(),
+                    path + "/Type is not set: choose one of " +
+                      std::string(type_names));
+        boundary.type = types.at(type);
+        const std::string constants = prm.get("Function constants");
+        boundary.velocity.parse(prm.get("Velocity"), constants, path + "/Velocity");
+        boundary.pressure.parse(prm.get("Pressure"), constants, path + "/Pressure");
+        partners[b]              = Utilities::trim(prm.get("Periodic partner"));
         boundary.volume_fraction = prm.get_double("Volume fraction");
-        boundary.stress.parse(prm.get("Stress"),
-                              prm.get("Function constants"),
-                              "Boundary conditions/" + boundary.name + "/Stress");
+        boundary.stress.parse(prm.get("Stress"), constants, path + "/Stress");
         prm.leave_subsection();
       }
     prm.leave_subsection();
 
-    bool all_outflow = true;
+    for (unsigned int b = 0; b < boundaries.size(); ++b)
+      if (boundaries[b].type == Type::periodic)
+        {
+          const std::string parameter =
+            "Boundary conditions/" + boundaries[b].name + "/Periodic partner";
+          check_input(!partners[b].empty(),
+                      parameter + " is not set: a periodic boundary needs the "
+                                  "name of the boundary it is identified with");
+          boundaries[b].periodic_partner = id(partners[b], parameter);
+          const Boundary &partner = boundary(boundaries[b].periodic_partner);
+          check_input(partner.id != boundaries[b].id,
+                      parameter + ": a boundary cannot be its own partner");
+          check_input(partner.type == Type::periodic &&
+                        partners[&partner - boundaries.data()] == boundaries[b].name,
+                      parameter + " = " + partner.name + ", but " +
+                        partner.name + " is not periodic with partner " +
+                        boundaries[b].name);
+        }
+
+    bool        velocity_fixed = false;
+    std::string listing;
     for (const Boundary &boundary : boundaries)
-      all_outflow = all_outflow && boundary.type == Type::outflow;
-    check_input(!all_outflow,
+      {
+        velocity_fixed = velocity_fixed || boundary.type == Type::no_slip ||
+                         boundary.type == Type::velocity;
+        for (const auto &[name, type] : types)
+          if (type == boundary.type)
+            listing += (listing.empty() ? "" : ", ") + boundary.name + " " + name;
+      }
+    check_input(velocity_fixed,
                 "Boundary conditions: at least one boundary's Type must be "
-                "'no slip' or 'velocity'; with four 'outflow' boundaries the "
-                "velocity is not determined");
+                "'no slip' or 'velocity', otherwise the velocity is not "
+                "determined (the types are: " + listing + ")");
   }
 
 
   void
-  BoundaryConditions::constrain_velocity(const DoFHandler<2> &      dof_handler,
+  BoundaryConditions::constrain_velocity(const DoFHandler<dim> &    dof_handler,
                                          const double               time,
                                          AffineConstraints<double> &constraints) const
   {
     // Walls first: a dof on a corner keeps the first constraint it gets, and
     // the no-slip value is the physically right one there.
-    for (const Type type : {Type::no_slip, Type::velocity, Type::outflow})
-      for (unsigned int b = 0; b < 4; ++b)
-        if (boundaries[b].type == type)
-          {
-            boundaries[b].velocity.function().set_time(time);
-            const StokesVelocity velocity(boundaries[b].velocity.function());
+    for (const Type type : {Type::no_slip, Type::velocity, Type::pressure, Type::slip})
+      for (const Boundary &boundary : boundaries)
+        {
+          // outflow is pressure with P = 0.
+          const Type boundary_type =
+            (boundary.type == Type::outflow ? Type::pressure : boundary.type);
+          if (boundary_type != type)
+            continue;
+          boundary.velocity.function().set_time(time);
+          const StokesVelocity velocity(boundary.velocity.function());
 
-            const bool   normal_is_x = (b == BoundaryId::inlet ||
-                                      b == BoundaryId::outlet);
-            ComponentMask mask(3, false);
-            if (type == Type::outflow)
-              mask.set(normal_is_x ? 1 : 0, true);
-            else
-              {
-                mask.set(0, true);
-                mask.set(1, true);
-              }
+          if (type == Type::slip)
+            VectorTools::compute_no_normal_flux_constraints(dof_handler,
+                                                            0,
+                                                            {boundary.id},
+                                                            constraints);
+          else if (type == Type::pressure && boundary.normal_axis < 0)
+            {
+              // Tangential velocity on a boundary not normal to an axis.
+              const std::map<types::boundary_id, const Function<dim> *> values = {
+                {boundary.id, &boundary.velocity.function()}};
+              VectorTools::compute_nonzero_tangential_flux_constraints(
+                dof_handler, 0, {boundary.id}, values, constraints);
+            }
+          else
+            {
+              // Every velocity component, or the tangential ones on a
+              // boundary normal to a coordinate axis.
+              ComponentMask mask(dim + 1, false);
+              for (unsigned int d = 0; d < dim; ++d)
+                mask.set(d, type != Type::pressure || int(d) != boundary.normal_axis);
+              if (type == Type::no_slip)
+                VectorTools::interpolate_boundary_values(
+                  dof_handler, boundary.id, Functions::ZeroFunction<dim>(dim + 1),
+                  constraints, mask);
+              else
+                VectorTools::interpolate_boundary_values(
+                  dof_handler, boundary.id, velocity, constraints, mask);
+            }
+        }
+  }
 
-            if (type == Type::no_slip)
-              VectorTools::interpolate_boundary_values(
-                dof_handler, b, Functions::ZeroFunction<2>(3), constraints, mask);
-            else
-              VectorTools::interpolate_boundary_values(
-                dof_handler, b, velocity, constraints, mask);
-          }
+
+  void
+  BoundaryConditions::add_periodicity(
+    parallel::distributed::Triangulation<dim> &triangulation) const
+  {
+    std::vector<GridTools::PeriodicFacePair<
+      typename parallel::distributed::Triangulation<dim>::cell_iterator>>
+      pairs;
+    for (const Boundary &boundary : boundaries)
+      if (boundary.type == Type::periodic && boundary.id < boundary.periodic_partner)
+        {
+          const Tensor<1, dim> offset =
+            periodic_offset(triangulation, boundary.id, boundary.periodic_partner);
+          unsigned int n_faces = 0;
+          for (const auto &cell : triangulation.cell_iterators_on_level(0))
+            for (const auto &face : cell->face_iterators())
+              n_faces += face->at_boundary() && (face->boundary_id() == boundary.id ||
+                                                 face->boundary_id() ==
+                                                   boundary.periodic_partner);
+          const std::size_t n_before = pairs.size();
+          try
+            {
+              GridTools::collect_periodic_faces(triangulation,
+                                                boundary.id,
+                                                boundary.periodic_partner,
+                                                main_direction(offset),
+                                                pairs,
+                                                offset);
+            }
+          catch (const std::exception &)
+            {
+              pairs.resize(n_before);
+            }
+          check_input(2 * (pairs.size() - n_before) == n_faces,
+                      "Boundary conditions/" + boundary.name +
+                        "/Periodic partner = " +
+                        this->boundary(boundary.periodic_partner).name +
+                        ": the two boundaries are not translates of each "
+                        "other face by face on the coarse mesh");
+        }
+    if (!pairs.empty())
+      triangulation.add_periodicity(pairs);
+  }
+
+
+  void
+  BoundaryConditions::constrain_periodic(const DoFHandler<dim> &    dof_handler,
+                                         AffineConstraints<double> &constraints) const
+  {
+    for (const Boundary &boundary : boundaries)
+      if (boundary.type == Type::periodic && boundary.id < boundary.periodic_partner)
+        {
+          const Tensor<1, dim> offset = periodic_offset(
+            dof_handler.get_triangulation(), boundary.id, boundary.periodic_partner);
+          std::vector<GridTools::PeriodicFacePair<DoFHandler<dim>::cell_iterator>> pairs;
+          GridTools::collect_periodic_faces(dof_handler,
+                                            boundary.id,
+                                            boundary.periodic_partner,
+                                            main_direction(offset),
+                                            pairs,
+                                            offset);
+          DoFTools::make_periodicity_constraints<dim, dim>(pairs, constraints);
+        }
   }
 
 
@@ -185,10 +367,11 @@ namespace viscofilm
 
 
   bool
-  BoundaryConditions::has_outflow() const
+  BoundaryConditions::fixes_pressure_level() const
   {
     for (const Boundary &boundary : boundaries)
-      if (boundary.type == Type::outflow)
+      if (boundary.type == Type::outflow || boundary.type == Type::pressure ||
+          boundary.type == Type::traction_free)
         return true;
     return false;
   }

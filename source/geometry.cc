@@ -1,16 +1,70 @@
 #include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/manifold_lib.h>
 
 #include <viscofilm/geometry.h>
 #include <viscofilm/input.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
 
 namespace viscofilm
 {
+  namespace
+  {
+    /// The cylinder's manifolds (GridGenerator::plate_with_a_hole's ids).
+    constexpr types::manifold_id polar_manifold       = 0;
+    constexpr types::manifold_id transfinite_manifold = 1;
+
+    /// Physical names of the (dim − 1)-dimensional groups in a gmsh file's
+    /// $PhysicalNames section, by tag (deal.II's GridIn skips the section).
+    std::map<types::boundary_id, std::string>
+    read_physical_names(const std::string &filename)
+    {
+      std::map<types::boundary_id, std::string> names;
+      std::ifstream                             file(filename);
+      std::string                               line;
+      while (std::getline(file, line) && Utilities::trim(line) != "$PhysicalNames")
+        ;
+      unsigned int n = 0;
+      if (!(file >> n))
+        return names;
+      for (unsigned int i = 0; i < n && std::getline(file >> std::ws, line); ++i)
+        {
+          std::istringstream entry(line);
+          int                group_dim = 0;
+          unsigned int       tag       = 0;
+          entry >> group_dim >> tag;
+          std::string name;
+          std::getline(entry >> std::ws, name);
+          name = Utilities::trim(name);
+          if (name.size() >= 2 && name.front() == '"' && name.back() == '"')
+            name = name.substr(1, name.size() - 2);
+          if (group_dim == dim - 1 && !name.empty())
+            names[tag] = name;
+        }
+      return names;
+    }
+  } // namespace
+
+
   void
   Geometry::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
+    prm.declare_entry("Mesh",
+                      "channel",
+                      Patterns::Selection("channel|channel with cylinder|gmsh"),
+                      "channel: the rectangle between the corners, boundaries "
+                      "Inlet (x min), Outlet (x max), Bottom (y min), Top (y "
+                      "max). channel with cylinder: the same with a cylinder "
+                      "(boundary Cylinder) cut out. gmsh: the quadrilateral "
+                      "mesh in Mesh file; its boundaries are the physical "
+                      "groups of its boundary lines, named as in the file.");
     prm.declare_entry("Lower left corner",
                       "0, 0",
                       Patterns::Anything(),
@@ -25,81 +79,254 @@ namespace viscofilm
                       "5",
                       Patterns::Integer(0, 12),
                       "Number of global refinements of the coarse mesh (square "
-                      "cells of edge min(width, height)). 5 gives the thesis' "
-                      "Δx = 1/32 on the unit square.");
+                      "cells of edge min(width, height) for the channel). 5 "
+                      "gives the thesis' Δx = 1/32 on the unit square.");
+    prm.declare_entry("Cylinder centre",
+                      "0, 0",
+                      Patterns::Anything(),
+                      "Centre (x, y) of the cylinder (channel with cylinder).");
+    prm.declare_entry("Cylinder radius",
+                      "1",
+                      Patterns::Double(0),
+                      "Radius of the cylinder (channel with cylinder); the "
+                      "cylinder must keep a gap of a tenth of the distance "
+                      "from its centre to the nearest channel side.");
+    prm.declare_entry("Mesh file",
+                      "",
+                      Patterns::Anything(),
+                      "gmsh mesh (.msh, format 2 or 4, quadrilaterals only), "
+                      "relative to the parameter file's directory.");
     prm.leave_subsection();
   }
 
 
   void
-  Geometry::parse_parameters(ParameterHandler &prm)
+  Geometry::parse_parameters(ParameterHandler &prm, const std::string &directory)
   {
     prm.enter_subsection("Geometry");
+    const std::string mesh_name = prm.get("Mesh");
+    mesh = (mesh_name == "channel" ? Mesh::channel :
+            mesh_name == "gmsh"    ? Mesh::gmsh :
+                                     Mesh::channel_with_cylinder);
     lower_left =
       parse_point(prm.get("Lower left corner"), "Geometry/Lower left corner");
     upper_right =
       parse_point(prm.get("Upper right corner"), "Geometry/Upper right corner");
     initial_refinement = prm.get_integer("Initial global refinement");
+    cylinder_centre =
+      parse_point(prm.get("Cylinder centre"), "Geometry/Cylinder centre");
+    cylinder_radius = prm.get_double("Cylinder radius");
+    mesh_file       = prm.get("Mesh file");
     prm.leave_subsection();
 
-    check_input(upper_right[0] > lower_left[0] &&
-                  upper_right[1] > lower_left[1],
-                "Geometry/Upper right corner must exceed Geometry/Lower left "
-                "corner in both x and y");
-    const auto n = coarse_repetitions();
-    check_input(n[0] <= 64 && n[1] <= 64,
-                "Geometry: the channel's aspect ratio must be at most 64");
+    if (mesh != Mesh::gmsh)
+      {
+        bool ordered = true;
+        for (unsigned int d = 0; d < dim; ++d)
+          ordered = ordered && upper_right[d] > lower_left[d];
+        check_input(ordered,
+                    "Geometry/Upper right corner must exceed Geometry/Lower "
+                    "left corner in both x and y");
+      }
+    if (mesh == Mesh::channel)
+      {
+        for (const unsigned int n : coarse_repetitions())
+          check_input(n <= 64,
+                      "Geometry: the channel's aspect ratio must be at most 64");
+      }
+    else if (mesh == Mesh::channel_with_cylinder)
+      {
+        double gap = std::numeric_limits<double>::max();
+        for (unsigned int d = 0; d < dim; ++d)
+          gap = std::min({gap,
+                          cylinder_centre[d] - lower_left[d],
+                          upper_right[d] - cylinder_centre[d]});
+        check_input(cylinder_radius > 0 && cylinder_radius < 0.9 * gap,
+                    "Geometry/Cylinder radius = " + to_text(cylinder_radius) +
+                      ": the cylinder must lie inside the channel with a margin "
+                      "(radius > 0 and below 0.9 times the distance " +
+                      to_text(gap) + " from Geometry/Cylinder centre to the "
+                      "nearest side of the channel)");
+      }
+    else
+      {
+        check_input(!mesh_file.empty(),
+                    "Geometry/Mesh file: Geometry/Mesh = gmsh needs a mesh file");
+        if (std::filesystem::path(mesh_file).is_relative())
+          mesh_file = (std::filesystem::path(directory) / mesh_file).string();
+        check_input(std::filesystem::is_regular_file(mesh_file),
+                    "Geometry/Mesh file: \"" + mesh_file + "\" does not exist");
+      }
+
+    // Learn the boundaries (and check the file) from a serial coarse mesh.
+    Triangulation<dim> coarse;
+    make_coarse_grid(coarse);
+    std::map<types::boundary_id, std::set<int>> axes; // of each face's normal
+    smallest_coarse_edge = std::numeric_limits<double>::max();
+    for (const auto &cell : coarse.active_cell_iterators())
+      {
+        for (const unsigned int l : cell->line_indices())
+          smallest_coarse_edge =
+            std::min(smallest_coarse_edge, cell->line(l)->diameter());
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            {
+              // Normal along axis d: every vertex has the same x_d.
+              int axis = -1;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  bool flat = true;
+                  for (const unsigned int v : face->vertex_indices())
+                    flat = flat && std::abs(face->vertex(v)[d] - face->vertex(0)[d]) <=
+                                     1e-10 * face->diameter();
+                  if (flat)
+                    axis = d;
+                }
+              axes[face->boundary_id()].insert(axis);
+            }
+      }
+
+    std::map<types::boundary_id, std::string> names;
+    if (mesh == Mesh::gmsh)
+      {
+        check_input(axes.count(0) == 0,
+                    "Geometry/Mesh file \"" + mesh_file +
+                      "\": some boundary lines belong to no physical group; "
+                      "put every boundary line in one (gmsh: Physical Curve), "
+                      "its name is what Boundary conditions calls it");
+        names = read_physical_names(mesh_file);
+      }
+    else
+      names = {{BoundaryId::inlet, "Inlet"},
+               {BoundaryId::outlet, "Outlet"},
+               {BoundaryId::bottom, "Bottom"},
+               {BoundaryId::top, "Top"},
+               {BoundaryId::cylinder, "Cylinder"}};
+    const std::map<types::boundary_id, std::string> default_types = {
+      {BoundaryId::inlet, "velocity"},
+      {BoundaryId::outlet, "outflow"},
+      {BoundaryId::bottom, "no slip"},
+      {BoundaryId::top, "no slip"},
+      {BoundaryId::cylinder, "no slip"}};
+
+    named_boundaries.clear();
+    std::set<std::string> used;
+    for (const auto &[id, face_axes] : axes)
+      {
+        NamedBoundary boundary;
+        boundary.id   = id;
+        boundary.name = names.count(id) ? names[id] : std::to_string(id);
+        boundary.default_type =
+          (mesh == Mesh::gmsh ? std::string() : default_types.at(id));
+        boundary.normal_axis = (face_axes.size() == 1 ? *face_axes.begin() : -1);
+        check_input(used.insert(boundary.name).second,
+                    "Geometry/Mesh file \"" + mesh_file +
+                      "\": two boundary groups are named \"" + boundary.name +
+                      "\"");
+        named_boundaries.push_back(boundary);
+      }
+
+    if (mesh == Mesh::gmsh)
+      {
+        lower_left  = coarse.get_vertices()[0];
+        upper_right = lower_left;
+        for (const Point<dim> &v : coarse.get_vertices())
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              lower_left[d]  = std::min(lower_left[d], v[d]);
+              upper_right[d] = std::max(upper_right[d], v[d]);
+            }
+      }
   }
 
 
-  std::array<unsigned int, 2>
+  std::vector<unsigned int>
   Geometry::coarse_repetitions() const
   {
-    const Tensor<1, 2> extent = upper_right - lower_left;
-    const double       edge   = std::min(extent[0], extent[1]);
-    return {{static_cast<unsigned int>(std::max(1.0, std::round(extent[0] / edge))),
-             static_cast<unsigned int>(std::max(1.0, std::round(extent[1] / edge)))}};
+    const Tensor<1, dim> extent = upper_right - lower_left;
+    double               edge   = extent[0];
+    for (unsigned int d = 1; d < dim; ++d)
+      edge = std::min(edge, extent[d]);
+    std::vector<unsigned int> n(dim);
+    for (unsigned int d = 0; d < dim; ++d)
+      n[d] = static_cast<unsigned int>(std::max(1.0, std::round(extent[d] / edge)));
+    return n;
   }
 
 
   void
-  Geometry::make_coarse_grid(parallel::distributed::Triangulation<2> &triangulation) const
+  Geometry::make_coarse_grid(Triangulation<dim> &triangulation) const
   {
-    const auto n = coarse_repetitions();
-    GridGenerator::subdivided_hyper_rectangle(
-      triangulation, {n[0], n[1]}, lower_left, upper_right, /*colorize*/ true);
+    if (mesh == Mesh::channel)
+      GridGenerator::subdivided_hyper_rectangle(
+        triangulation, coarse_repetitions(), lower_left, upper_right, /*colorize*/ true);
+    else if (mesh == Mesh::channel_with_cylinder)
+      {
+        // A square of half-size h around the hole (h: the distance to the
+        // nearest side), padded to the channel's sides.
+        double h = std::numeric_limits<double>::max();
+        for (unsigned int d = 0; d < dim; ++d)
+          h = std::min({h,
+                        cylinder_centre[d] - lower_left[d],
+                        upper_right[d] - cylinder_centre[d]});
+        GridGenerator::plate_with_a_hole(triangulation,
+                                         cylinder_radius,
+                                         h,
+                                         cylinder_centre[1] - h - lower_left[1],
+                                         upper_right[1] - cylinder_centre[1] - h,
+                                         cylinder_centre[0] - h - lower_left[0],
+                                         upper_right[0] - cylinder_centre[0] - h,
+                                         cylinder_centre,
+                                         polar_manifold,
+                                         transfinite_manifold,
+                                         1.,
+                                         2,
+                                         /*colorize*/ true);
+        // Refined vertices on the circle, and smoothly placed around it.
+        triangulation.set_manifold(polar_manifold, PolarManifold<dim>(cylinder_centre));
+        TransfiniteInterpolationManifold<dim> transfinite;
+        transfinite.initialize(triangulation);
+        triangulation.set_manifold(transfinite_manifold, transfinite);
+      }
+    else
+      {
+        Triangulation<dim> serial;
+        GridIn<dim>        grid_in;
+        grid_in.attach_triangulation(serial);
+        std::ifstream file(mesh_file);
+        try
+          {
+            grid_in.read_msh(file);
+          }
+        catch (const std::exception &e)
+          {
+            check_input(false,
+                        "Geometry/Mesh file \"" + mesh_file +
+                          "\" could not be read as a gmsh mesh: " +
+                          error_message(e));
+          }
+        check_input(serial.all_reference_cells_are_hyper_cube(),
+                    "Geometry/Mesh file \"" + mesh_file +
+                      "\" contains triangles; the solver needs quadrilaterals "
+                      "(gmsh: Recombine Surface, Mesh.RecombineAll = 1)");
+        triangulation.copy_triangulation(serial);
+      }
   }
 
 
-  void
-  Geometry::make_grid(parallel::distributed::Triangulation<2> &triangulation) const
+  const std::vector<Geometry::NamedBoundary> &
+  Geometry::boundaries() const
   {
-    make_coarse_grid(triangulation);
-    triangulation.refine_global(initial_refinement);
+    return named_boundaries;
   }
 
 
   double
   Geometry::initial_cell_size() const
   {
-    const Tensor<1, 2> extent = upper_right - lower_left;
-    return extent[0] / coarse_repetitions()[0] / std::pow(2.0, initial_refinement);
-  }
-
-
-  bool
-  Geometry::contains(const Point<2> &p) const
-  {
-    const double tol = 1e-12 * (upper_right - lower_left).norm();
-    return p[0] >= lower_left[0] - tol && p[0] <= upper_right[0] + tol &&
-           p[1] >= lower_left[1] - tol && p[1] <= upper_right[1] + tol;
-  }
-
-
-  double
-  Geometry::area() const
-  {
-    const Tensor<1, 2> extent = upper_right - lower_left;
-    return extent[0] * extent[1];
+    const double coarse_edge =
+      (mesh == Mesh::channel ? (upper_right - lower_left)[0] / coarse_repetitions()[0] :
+                               smallest_coarse_edge);
+    return coarse_edge / std::pow(2.0, initial_refinement);
   }
 } // namespace viscofilm

@@ -1,8 +1,12 @@
 #include <deal.II/base/quadrature_lib.h>
 
+#include <deal.II/dofs/dof_tools.h>
+
 #include <deal.II/fe/fe_values.h>
 
-#include <viscofilm/geometry.h>
+#include <deal.II/lac/affine_constraints.h>
+
+#include <viscofilm/boundary_conditions.h>
 #include <viscofilm/input.h>
 #include <viscofilm/loads.h>
 #include <viscofilm/output.h>
@@ -10,6 +14,7 @@
 #include <viscofilm/stress.h>
 #include <viscofilm/volume_fraction.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace viscofilm
@@ -23,6 +28,28 @@ namespace viscofilm
       const double half_difference = 0.5 * (sigma[0][0] - sigma[1][1]);
       return std::sqrt(3 * (half_difference * half_difference +
                             sigma[0][1] * sigma[0][1]));
+    }
+
+
+    /// The prefactor of τ in the total stress and the momentum equation:
+    /// φ clipped to [0, 1] as in η(φ), the thesis mixture (eq. 2.34).
+    double
+    elastic_coupling(const double volume_fraction)
+    {
+      return std::clamp(volume_fraction, 0.0, 1.0);
+    }
+
+
+    /// The tangential part of the traction @p force_density on a wall with
+    /// outward normal @p normal: in 2D signed along the tangent n rotated by
+    /// +90° (along +x on the bottom wall, where it is σ_xy), in 3D its length.
+    double
+    wall_shear(const Tensor<1, dim> &force_density, const Tensor<1, dim> &normal)
+    {
+      if constexpr (dim == 2)
+        return force_density[0] * -normal[1] + force_density[1] * normal[0];
+      else
+        return (force_density - (force_density * normal) * normal).norm();
     }
 
 
@@ -40,14 +67,16 @@ namespace viscofilm
                   const Model &         model,
                   const StokesSolver &  stokes,
                   const VolumeFraction &volume_fraction,
-                  const ElasticStress & stress)
+                  const ElasticStress & stress,
+                  const UpdateFlags     extra_flags = update_default)
         : model(model)
         , stokes(stokes)
         , volume_fraction(volume_fraction)
         , stress(stress)
         , stokes_values(stokes.dof_handler().get_fe(),
                         quadrature,
-                        update_values | update_gradients | update_JxW_values)
+                        update_values | update_gradients | update_JxW_values |
+                          extra_flags)
         , phi_values(volume_fraction.dof_handler().get_fe(),
                      quadrature,
                      update_values | update_gradients)
@@ -94,7 +123,7 @@ namespace viscofilm
             sigma[q] = -pressure[q] * unit_symmetric_tensor<2>() +
                        2 * model.viscosity(phi[q]) * velocity_gradient[q];
             if (model.viscoelastic)
-              sigma[q] += std::clamp(phi[q], 0.0, 1.0) * tau;
+              sigma[q] += elastic_coupling(phi[q]) * tau;
           }
       }
 
@@ -102,6 +131,13 @@ namespace viscofilm
       JxW(const unsigned int q) const
       {
         return stokes_values.JxW(q);
+      }
+
+      /// The Stokes element's values (shape functions, normals).
+      const FEValuesType &
+      stokes_fe_values() const
+      {
+        return stokes_values;
       }
 
     private:
@@ -180,6 +216,28 @@ namespace viscofilm
   } // namespace
 
 
+  namespace
+  {
+    /// The boundaries named in the comma-separated list @p names, each
+    /// resolved with @p boundary_conditions (an unknown name names @p parameter).
+    std::vector<BiofilmLoads::Parameters::NamedBoundary>
+    named_boundaries(const std::string &       names,
+                     const std::string &       parameter,
+                     const BoundaryConditions &boundary_conditions)
+    {
+      std::vector<BiofilmLoads::Parameters::NamedBoundary> boundaries;
+      for (const std::string &name : Utilities::split_string_list(names))
+        {
+          for (const auto &boundary : boundaries)
+            check_input(boundary.name != name,
+                        parameter + ": \"" + name + "\" is listed twice");
+          boundaries.push_back({name, boundary_conditions.id(name, parameter)});
+        }
+      return boundaries;
+    }
+  } // namespace
+
+
   void
   BiofilmLoads::Parameters::declare_parameters(ParameterHandler &prm)
   {
@@ -196,20 +254,60 @@ namespace viscofilm
                       Patterns::Double(0, 1),
                       "φ of the biofilm outline: the biofilm is φ >= this, its "
                       "interface the contour φ = this. In (0, 1).");
+    prm.declare_entry("Walls",
+                      "Bottom",
+                      Patterns::List(Patterns::Anything()),
+                      "The boundaries (names of Boundary conditions, "
+                      "comma-separated) on which statistics.csv's "
+                      "wall_shear_stress_mean/max are taken: the tangential "
+                      "traction the fluid exerts on them (doc/loads.md). "
+                      "Empty: none (the columns are 0).");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Forces");
+    prm.declare_entry("Boundaries",
+                      "",
+                      Patterns::List(Patterns::Anything()),
+                      "Boundaries (names of Boundary conditions, "
+                      "comma-separated) whose force goes into statistics.csv as "
+                      "force_x_<name>, force_y_<name>: the total force "
+                      "(pressure, viscous and elastic) the fluid exerts on the "
+                      "boundary per unit depth, F = −∫ σ n ds with n the "
+                      "domain's outward normal. Empty: none.");
+    prm.declare_entry("Method",
+                      "consistent",
+                      Patterns::Selection("consistent|surface integral"),
+                      "consistent: F·e = −R(v), the residual of the discrete "
+                      "momentum equation for the test function v that is e on "
+                      "the boundary's velocity nodes and 0 at the others (the "
+                      "reaction force). surface integral: −∫ σ n ds with the "
+                      "face values of the fields. The measurements that chose "
+                      "the default: doc/loads.md.");
     prm.leave_subsection();
   }
 
 
   void
-  BiofilmLoads::Parameters::parse_parameters(ParameterHandler &prm)
+  BiofilmLoads::Parameters::parse_parameters(
+    ParameterHandler &        prm,
+    const BoundaryConditions &boundary_conditions)
   {
     prm.enter_subsection("Detachment");
     stress_threshold = prm.get_double("Stress threshold");
     interface_level  = prm.get_double("Interface volume fraction");
+    walls = named_boundaries(prm.get("Walls"), "Detachment/Walls", boundary_conditions);
     prm.leave_subsection();
     check_input(interface_level > 0 && interface_level < 1,
                 "Detachment/Interface volume fraction must be in (0, 1), got " +
                   to_text(interface_level));
+
+    prm.enter_subsection("Forces");
+    force_boundaries =
+      named_boundaries(prm.get("Boundaries"), "Forces/Boundaries", boundary_conditions);
+    force_method = (prm.get("Method") == "surface integral" ?
+                      ForceMethod::surface_integral :
+                      ForceMethod::consistent);
+    prm.leave_subsection();
   }
 
 
@@ -235,26 +333,34 @@ namespace viscofilm
     const QGauss<1> face_quadrature(3);
     TotalStress<FEValues<2>>     cell_stress(quadrature, model, stokes, volume_fraction, stress);
     TotalStress<FEFaceValues<2>> wall_stress(
-      face_quadrature, model, stokes, volume_fraction, stress);
+      face_quadrature, model, stokes, volume_fraction, stress, update_normal_vectors);
     const double level = parameters.interface_level;
+    const auto   is_wall = [this](const types::boundary_id id) {
+      return std::any_of(parameters.walls.begin(),
+                         parameters.walls.end(),
+                         [id](const auto &wall) { return wall.id == id; });
+    };
 
-    // sums: wall ∫σ_xy, wall length, interface ∫|σn|, interface measure,
-    // detachment area; maxima: |σ_xy| on the wall, |σn|, σ_vm
+    // sums: walls ∫ shear, walls length, interface ∫|σn|, interface measure,
+    // detachment area; maxima: |shear| on the walls, |σn|, σ_vm
     double sums[5]   = {0, 0, 0, 0, 0};
     double maxima[3] = {0, 0, 0};
     for (const auto &cell : stokes.dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
           for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary() &&
-                cell->face(f)->boundary_id() == BoundaryId::bottom)
+            if (cell->face(f)->at_boundary() && is_wall(cell->face(f)->boundary_id()))
               {
                 wall_stress.reinit(cell, f);
+                const auto &normals = wall_stress.stokes_fe_values().get_normal_vectors();
                 for (unsigned int q = 0; q < face_quadrature.size(); ++q)
                   {
-                    sums[0] += wall_stress.sigma[q][0][1] * wall_stress.JxW(q);
+                    // The force per area on the wall, −σ n.
+                    const double shear =
+                      wall_shear(-(wall_stress.sigma[q] * normals[q]), normals[q]);
+                    sums[0] += shear * wall_stress.JxW(q);
                     sums[1] += wall_stress.JxW(q);
-                    maxima[0] = std::max(maxima[0], std::abs(wall_stress.sigma[q][0][1]));
+                    maxima[0] = std::max(maxima[0], std::abs(shear));
                   }
               }
 
@@ -294,6 +400,146 @@ namespace viscofilm
     statistics.set("interface_traction_max", maxima[1]);
     statistics.set("von_mises_max", maxima[2]);
     statistics.set("detachment_area", sums[4]);
+
+    const std::vector<Tensor<1, dim>> forces = boundary_forces();
+    for (unsigned int b = 0; b < forces.size(); ++b)
+      for (unsigned int d = 0; d < dim; ++d)
+        statistics.set(std::string("force_") + "xyz"[d] + "_" +
+                         parameters.force_boundaries[b].name,
+                       forces[b][d]);
+  }
+
+
+  std::vector<Tensor<1, dim>>
+  BiofilmLoads::boundary_forces() const
+  {
+    const std::vector<Parameters::NamedBoundary> &boundaries =
+      parameters.force_boundaries;
+    std::vector<Tensor<1, dim>> forces(boundaries.size());
+    if (boundaries.empty())
+      return forces;
+    const DoFHandler<dim> &dofs = stokes.dof_handler();
+    const auto &           fe   = dofs.get_fe();
+
+    if (parameters.force_method == Parameters::ForceMethod::surface_integral)
+      {
+        const QGauss<dim - 1>            quadrature(fe.degree + 1);
+        TotalStress<FEFaceValues<dim>>   face_stress(
+          quadrature, model, stokes, volume_fraction, stress, update_normal_vectors);
+        for (const auto &cell : dofs.active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary())
+                for (unsigned int b = 0; b < boundaries.size(); ++b)
+                  if (cell->face(f)->boundary_id() == boundaries[b].id)
+                    {
+                      face_stress.reinit(cell, f);
+                      const auto &normals =
+                        face_stress.stokes_fe_values().get_normal_vectors();
+                      for (unsigned int q = 0; q < quadrature.size(); ++q)
+                        forces[b] -= face_stress.sigma[q] * normals[q] * face_stress.JxW(q);
+                    }
+      }
+    else
+      {
+        // F·e = −R(v) = −∫_Ω σ : ∇v for v = e at the boundary's velocity
+        // nodes and 0 at all others: the momentum equation's weak form
+        // integrated by parts, ∫_Ω σ : ∇v = ∫_∂Ω σn · v, evaluated with the
+        // assembly's quadrature, so that for a discrete solution it is the
+        // reaction of the constrained equations. v must be a finite element
+        // function: hanging nodes take the values of the nodes they hang on.
+        // Where the boundary meets another one (a channel's corners), v
+        // reaches onto the other's first faces; their part ∫ σn · v there is
+        // taken off with the face values (zero on a closed boundary such as
+        // a cylinder), else the force would pick up an O(h) share of the
+        // neighbour's traction.
+        IndexSet relevant;
+        DoFTools::extract_locally_relevant_dofs(dofs, relevant);
+        AffineConstraints<double> hanging(relevant);
+        DoFTools::make_hanging_node_constraints(dofs, hanging);
+        hanging.close();
+        const ComponentMask velocity = fe.component_mask(FEValuesExtractors::Vector(0));
+
+        std::vector<IndexSet> on_boundary;
+        for (const auto &boundary : boundaries)
+          on_boundary.push_back(
+            DoFTools::extract_boundary_dofs(dofs, velocity, {boundary.id}));
+        // v's nodal value at dof i for boundary b.
+        const auto value = [&](const unsigned int b, const types::global_dof_index i) {
+          if (!hanging.is_constrained(i))
+            return on_boundary[b].is_element(i) ? 1.0 : 0.0;
+          double sum = 0;
+          for (const auto &[j, weight] : *hanging.get_constraint_entries(i))
+            sum += (on_boundary[b].is_element(j) ? weight : 0.0);
+          return sum;
+        };
+
+        TotalStress<FEValues<dim>> cell_stress(
+          stokes.quadrature(), model, stokes, volume_fraction, stress);
+        const QGauss<dim - 1>          face_quadrature(fe.degree + 1);
+        TotalStress<FEFaceValues<dim>> face_stress(
+          face_quadrature, model, stokes, volume_fraction, stress, update_normal_vectors);
+        const FEValuesExtractors::Vector     velocities(0);
+        std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
+        std::vector<double>                  v(fe.n_dofs_per_cell());
+        for (const auto &cell : dofs.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              cell->get_dof_indices(local_dofs);
+              bool reinitialized = false;
+              for (unsigned int b = 0; b < boundaries.size(); ++b)
+                {
+                  bool touches = false;
+                  for (unsigned int i = 0; i < local_dofs.size(); ++i)
+                    {
+                      v[i]    = (velocity[fe.system_to_component_index(i).first] ?
+                                   value(b, local_dofs[i]) :
+                                   0.0);
+                      touches = touches || v[i] != 0;
+                    }
+                  if (!touches)
+                    continue;
+                  if (!reinitialized)
+                    cell_stress.reinit(cell);
+                  reinitialized = true;
+                  const auto &values = cell_stress.stokes_fe_values();
+                  for (unsigned int i = 0; i < local_dofs.size(); ++i)
+                    if (v[i] != 0)
+                      {
+                        const unsigned int d = fe.system_to_component_index(i).first;
+                        for (unsigned int q = 0; q < values.n_quadrature_points; ++q)
+                          forces[b][d] -= v[i] *
+                                          scalar_product(cell_stress.sigma[q],
+                                                         values[velocities].gradient(i, q)) *
+                                          values.JxW(q);
+                      }
+
+                  for (const unsigned int f : cell->face_indices())
+                    if (cell->face(f)->at_boundary() &&
+                        cell->face(f)->boundary_id() != boundaries[b].id)
+                      {
+                        face_stress.reinit(cell, f);
+                        const auto &face_values = face_stress.stokes_fe_values();
+                        for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                          {
+                            Tensor<1, dim> v_q;
+                            for (unsigned int i = 0; i < local_dofs.size(); ++i)
+                              if (v[i] != 0)
+                                v_q += v[i] * face_values[velocities].value(i, q);
+                            // v_q[d] is the weight of the component d.
+                            const Tensor<1, dim> traction =
+                              face_stress.sigma[q] * face_values.normal_vector(q);
+                            for (unsigned int d = 0; d < dim; ++d)
+                              forces[b][d] += traction[d] * v_q[d] * face_values.JxW(q);
+                          }
+                      }
+                }
+            }
+      }
+
+    for (Tensor<1, dim> &force : forces)
+      force = Utilities::MPI::sum(force, dofs.get_communicator());
+    return forces;
   }
 
 

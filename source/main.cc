@@ -28,10 +28,17 @@ namespace
   /// would resolve it relative to the working directory), so that the cases
   /// in prm/ can include prm/default.prm and be included in turn. The include
   /// line becomes a comment, so messages keep the file's line numbers.
+  ///
+  /// With @p skip_undefined (the first pass, which declares Geometry alone)
+  /// undeclared entries are skipped, and the names of the subsections of
+  /// Boundary conditions are collected in @p boundary_names with their line.
   void
   parse_with_includes(dealii::ParameterHandler &prm,
                       const std::string &       filename,
-                      const unsigned int        depth = 0)
+                      const bool                skip_undefined = false,
+                      std::vector<std::pair<std::string, std::string>>
+                        *                boundary_names = nullptr,
+                      const unsigned int depth          = 0)
   {
     using viscofilm::check_input;
     check_input(depth < 16,
@@ -42,15 +49,24 @@ namespace
     std::ifstream            file(filename);
     std::string              line, text;
     std::vector<std::string> includes;
-    int                      level = 0;
+    std::vector<std::string> subsections;
     for (unsigned int number = 1; std::getline(file, line); ++number)
       {
         const std::string code =
           dealii::Utilities::trim(line.substr(0, line.find('#')));
+        const int level = subsections.size();
         if (code.rfind("subsection ", 0) == 0)
-          ++level;
-        else if (code == "end")
-          --level;
+          {
+            const std::string name = dealii::Utilities::trim(code.substr(11));
+            if (boundary_names != nullptr && level == 1 &&
+                subsections[0] == "Boundary conditions")
+              boundary_names->emplace_back(name,
+                                           "line " + std::to_string(number) +
+                                             " of \"" + filename + "\"");
+            subsections.push_back(name);
+          }
+        else if (code == "end" && level > 0)
+          subsections.pop_back();
         else if (code.rfind("include ", 0) == 0 || code.rfind("INCLUDE ", 0) == 0)
           {
             check_input(level == 0,
@@ -68,15 +84,31 @@ namespace
         check_input(std::filesystem::is_regular_file(included),
                     "parameter file \"" + filename + "\" includes \"" + included +
                       "\", which does not exist");
-        parse_with_includes(prm, included, depth + 1);
+        parse_with_includes(prm, included, skip_undefined, boundary_names, depth + 1);
       }
     std::istringstream stream(text);
-    prm.parse_input(stream, filename);
+    prm.parse_input(stream, filename, "", skip_undefined);
+  }
+
+
+  /// Declare every parameter in @p prm for the mesh that @p geometry_input
+  /// (Geometry's entries) describes: Boundary conditions has a subsection for
+  /// each of its boundaries.
+  void
+  declare_for_mesh(dealii::ParameterHandler &prm,
+                   dealii::ParameterHandler &geometry_input,
+                   viscofilm::Geometry &     geometry,
+                   const std::string &       directory)
+  {
+    geometry.parse_parameters(geometry_input, directory);
+    viscofilm::Parameters::declare_parameters(prm, geometry.boundaries());
   }
 
 
   /// Read @p filename into @p prm and @p parameters, or throw with a message
-  /// that names the file, the line and the parameter.
+  /// that names the file, the line and the parameter. Two passes: the first
+  /// reads Geometry alone and learns the mesh's boundaries, which declares
+  /// Boundary conditions/<name>; the second reads everything strictly.
   void
   read_parameters(const std::string &     filename,
                   dealii::ParameterHandler &prm,
@@ -88,8 +120,29 @@ namespace
                              filename.substr(filename.size() - 4) == ".prm",
                            "parameter file \"" + filename +
                              "\" must have the extension .prm");
+    const std::string directory = std::filesystem::path(filename).parent_path().string();
+    dealii::ParameterHandler geometry_input;
+    viscofilm::Geometry::declare_parameters(geometry_input);
+    std::vector<std::pair<std::string, std::string>> boundary_names;
+    parse_with_includes(geometry_input, filename, true, &boundary_names);
+    declare_for_mesh(prm, geometry_input, parameters.geometry, directory);
+
+    std::string known;
+    for (const auto &boundary : parameters.geometry.boundaries())
+      known += (known.empty() ? "" : ", ") + boundary.name;
+    for (const auto &[name, where] : boundary_names)
+      {
+        bool found = false;
+        for (const auto &boundary : parameters.geometry.boundaries())
+          found = found || boundary.name == name;
+        viscofilm::check_input(found,
+                               where + ": Boundary conditions/" + name +
+                                 ": the mesh has no boundary named \"" + name +
+                                 "\"; its boundaries are " + known);
+      }
+
     parse_with_includes(prm, filename);
-    parameters.parse_parameters(prm);
+    parameters.parse_parameters(prm, directory);
   }
 } // namespace
 
@@ -117,10 +170,13 @@ main(int argc, char *argv[])
 
   ParameterHandler prm;
   Parameters       parameters;
-  Parameters::declare_parameters(prm);
 
   if (args.size() == 1 && args[0] == "--print-parameters")
     {
+      // The default mesh's (the channel's) boundaries.
+      ParameterHandler geometry_input;
+      Geometry::declare_parameters(geometry_input);
+      declare_for_mesh(prm, geometry_input, parameters.geometry, "");
       if (is_root)
         prm.print_parameters(std::cout, ParameterHandler::PRM);
       return 0;

@@ -32,7 +32,10 @@ namespace viscofilm
     , volume_fraction(triangulation,
                       parameters.stabilization,
                       parameters.boundary_conditions)
-    , stress(triangulation, parameters.stress, parameters.model)
+    , stress(triangulation,
+             parameters.stress,
+             parameters.model,
+             parameters.boundary_conditions)
     , departure_feet(parameters.departure_feet, triangulation)
     , loads(parameters.detachment,
             parameters.model,
@@ -48,7 +51,39 @@ namespace viscofilm
   Problem::make_grid()
   {
     TimerOutput::Scope t(*computing_timer, "setup");
-    parameters.geometry.make_grid(triangulation);
+    make_coarse_grid();
+    triangulation.refine_global(parameters.geometry.initial_refinement);
+    check_probe_points();
+  }
+
+
+  void
+  Problem::make_coarse_grid()
+  {
+    parameters.geometry.make_coarse_grid(triangulation);
+    parameters.boundary_conditions.add_periodicity(triangulation);
+  }
+
+
+  void
+  Problem::check_probe_points() const
+  {
+    for (const Point<dim> &p : parameters.output.probe_points)
+      {
+        bool found = false;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned() && cell->point_inside(p))
+            {
+              found = true;
+              break;
+            }
+        std::string point;
+        for (unsigned int d = 0; d < dim; ++d)
+          point += (d == 0 ? "" : ", ") + to_text(p[d]);
+        check_input(Utilities::MPI::logical_or(found, mpi_communicator),
+                    "Output/Probe points: the point (" + point +
+                      ") lies in no cell of the mesh");
+      }
   }
 
 
@@ -122,7 +157,7 @@ namespace viscofilm
     const Checkpoint::State state = checkpoint.read(prm);
     {
       TimerOutput::Scope t(*computing_timer, "setup");
-      parameters.geometry.make_coarse_grid(triangulation);
+      make_coarse_grid();
       triangulation.load(checkpoint.mesh_file());
     }
     setup_dofs();
@@ -211,7 +246,7 @@ namespace viscofilm
     {
       TimerOutput::Scope t(*computing_timer, "departure feet");
       if (viscoelastic)
-        stress.trace_back(departure_feet, stokes, parameters.boundary_conditions, time, k);
+        stress.trace_back(departure_feet, stokes, time, k);
       stokes.trace_back(departure_feet, k);
     }
 
@@ -287,7 +322,7 @@ namespace viscofilm
       {
         const auto [velocity_error, pressure_error] =
           parameters.verification.l2_errors(
-            stokes, time, !parameters.boundary_conditions.has_outflow());
+            stokes, time, !parameters.boundary_conditions.fixes_pressure_level());
         statistics.set("velocity_l2_error", velocity_error);
         statistics.set("pressure_l2_error", pressure_error);
       }

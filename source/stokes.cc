@@ -415,12 +415,13 @@ namespace viscofilm
     DoFTools::make_hanging_node_constraints(dofs, constraints);
     boundary_conditions.constrain_velocity(dofs, time, constraints);
 
-    // A factorisation needs a nonsingular matrix: without an outflow boundary
-    // pin the first pressure dof (Q1: a coarse-mesh vertex, never hanging;
-    // P1disc: the mean of rank 0's first cell); the pressure is shifted to
-    // mean zero after the solve.
+    // A factorisation needs a nonsingular matrix: unless a boundary fixes the
+    // pressure level, pin the first pressure dof (Q1: a coarse-mesh vertex,
+    // never hanging; P1disc: the mean of rank 0's first cell); the pressure
+    // is shifted to mean zero after the solve. Before the periodic
+    // constraints, which respect it (as they do boundary values).
     if (parameters.method != Method::block_preconditioned &&
-        !boundary_conditions.has_outflow())
+        !boundary_conditions.fixes_pressure_level())
       {
         const types::global_dof_index first_pressure_dof =
           owned_partitioning[0].size();
@@ -431,6 +432,7 @@ namespace viscofilm
             constraints.add_line(first_pressure_dof);
           }
       }
+    boundary_conditions.constrain_periodic(dofs, constraints);
     constraints.close();
   }
 
@@ -467,6 +469,14 @@ namespace viscofilm
     FEValues<2>     phi_fe_values(coefficients.volume_fraction_dof_handler->get_fe(),
                               quadrature,
                               update_values);
+    // The prescribed normal traction −P n of pressure boundaries.
+    const QGauss<dim - 1> face_quadrature(fe.degree + 1);
+    FEFaceValues<dim>     fe_face_values(fe,
+                                     face_quadrature,
+                                     update_values | update_normal_vectors |
+                                       update_quadrature_points | update_JxW_values);
+    for (const auto &boundary : boundary_conditions.boundaries)
+      boundary.pressure.function().set_time(coefficients.time);
 
     const unsigned int dofs_per_cell = fe.n_dofs_per_cell();
     const unsigned int n_q_points    = quadrature.size();
@@ -570,6 +580,26 @@ namespace viscofilm
                                  JxW;
                 }
             }
+
+          // −∫ P n·v ds (Type = pressure; outflow has P = 0).
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary() &&
+                boundary_conditions.boundary(face->boundary_id()).type ==
+                  BoundaryConditions::Type::pressure)
+              {
+                const Function<dim> &pressure =
+                  boundary_conditions.boundary(face->boundary_id()).pressure.function();
+                fe_face_values.reinit(cell, face);
+                for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                  {
+                    const double traction =
+                      pressure.value(fe_face_values.quadrature_point(q)) *
+                      fe_face_values.JxW(q);
+                    for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                      cell_rhs(i) -= traction * (fe_face_values[velocities].value(i, q) *
+                                                 fe_face_values.normal_vector(q));
+                  }
+              }
 
           if (assemble_matrix)
             {
@@ -802,7 +832,7 @@ namespace viscofilm
   void
   StokesSolver::normalize_pressure(TrilinosWrappers::MPI::BlockVector &distributed)
   {
-    if (boundary_conditions.has_outflow())
+    if (boundary_conditions.fixes_pressure_level())
       return;
     current_solution = distributed;
     const double mean_pressure =

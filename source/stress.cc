@@ -124,10 +124,12 @@ namespace viscofilm
   ElasticStress::ElasticStress(
     const parallel::distributed::Triangulation<2> &triangulation,
     const Parameters &                             parameters,
-    const Model &                                  model)
+    const Model &                                  model,
+    const BoundaryConditions &                     boundary_conditions)
     : triangulation(triangulation)
     , parameters(parameters)
     , model(model)
+    , boundary_conditions(boundary_conditions)
     , fe(parameters.discontinuous ?
            static_cast<const FiniteElement<2> &>(FE_DGQ<2>(2)) :
            static_cast<const FiniteElement<2> &>(FE_Q<2>(2)),
@@ -155,6 +157,7 @@ namespace viscofilm
     hanging_node_constraints.clear();
     hanging_node_constraints.reinit(locally_relevant_dofs);
     DoFTools::make_hanging_node_constraints(dofs, hanging_node_constraints);
+    boundary_conditions.constrain_periodic(dofs, hanging_node_constraints);
     hanging_node_constraints.close();
     stokes_quadrature = quadrature;
 
@@ -234,11 +237,10 @@ namespace viscofilm
 
 
   void
-  ElasticStress::trace_back(DepartureFeet &           feet,
-                            const StokesSolver &      stokes,
-                            const BoundaryConditions &boundary_conditions,
-                            const double              time,
-                            const double              time_step)
+  ElasticStress::trace_back(DepartureFeet &     feet,
+                            const StokesSolver &stokes,
+                            const double        time,
+                            const double        time_step)
   {
     std::vector<Point<2>>                               points(nodes.size());
     std::vector<Triangulation<2>::active_cell_iterator> cells(nodes.size());

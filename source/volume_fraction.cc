@@ -86,6 +86,7 @@ namespace viscofilm
     constraints.clear();
     constraints.reinit(locally_relevant_dofs);
     DoFTools::make_hanging_node_constraints(dofs, constraints);
+    boundary_conditions.constrain_periodic(dofs, constraints);
     constraints.close();
     current_solution.reinit(dofs.locally_owned_dofs(),
                             locally_relevant_dofs,
@@ -115,6 +116,7 @@ namespace viscofilm
     constraints.clear();
     constraints.reinit(locally_relevant_dofs);
     DoFTools::make_hanging_node_constraints(dofs, constraints);
+    boundary_conditions.constrain_periodic(dofs, constraints);
     if (stokes != nullptr)
       {
         // Inflow where the mean u·n is below round-off relative to the
@@ -131,7 +133,9 @@ namespace viscofilm
         for (const auto &cell : dofs.active_cell_iterators())
           if (!cell->is_artificial() && cell->at_boundary())
             for (const unsigned int f : cell->face_indices())
-              if (cell->face(f)->at_boundary())
+              if (cell->face(f)->at_boundary() &&
+                  boundary_conditions.boundary(cell->face(f)->boundary_id()).type !=
+                    BoundaryConditions::Type::periodic)
                 {
                   stokes_face.reinit(
                     DoFHandler<2>::active_cell_iterator(&cell->get_triangulation(),

@@ -1,14 +1,18 @@
-// Velocity boundary conditions on the four sides of the channel (MODEL.md §4).
+// Boundary conditions on the named boundaries of the mesh (MODEL.md §4): each
+// boundary of Geometry gets a Type and its data.
 #ifndef viscofilm_boundary_conditions_h
 #define viscofilm_boundary_conditions_h
 
 #include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/distributed/tria.h>
 
 #include <deal.II/dofs/dof_handler.h>
 
 #include <deal.II/lac/affine_constraints.h>
 
 #include <viscofilm/dimension.h>
+#include <viscofilm/geometry.h>
 #include <viscofilm/input.h>
 
 #include <string>
@@ -23,9 +27,13 @@ namespace viscofilm
   public:
     enum class Type
     {
-      no_slip,  // u = v = 0
-      velocity, // u, v from the expression
-      outflow   // tangential velocity from the expression, normal natural
+      no_slip,       // u = 0
+      velocity,      // u from the expression
+      outflow,       // pressure with P = 0 (the thesis' outlet)
+      traction_free, // σ·n = 0: all natural
+      slip,          // u·n = 0, zero tangential traction
+      pressure,      // σn·n = −P, tangential velocity from the expression
+      periodic       // identified with Periodic partner by a translation
     };
 
     struct Boundary
@@ -37,26 +45,47 @@ namespace viscofilm
       double             volume_fraction = 0; // φ where the flow enters
       /// τ where the flow enters (xx; xy; yy), 0: the relaxed state.
       ParsedExpression stress{n_symmetric_components};
+      /// The prescribed normal traction −P n (pressure; outflow: P = 0).
+      ParsedExpression pressure{1};
+      /// The id of the boundary a periodic one is identified with.
+      types::boundary_id periodic_partner = 0;
+      /// The coordinate axis the normal is parallel to; -1: none.
+      int normal_axis = -1;
     };
 
+    /// The channel's four boundaries with the thesis' types.
     BoundaryConditions();
 
+    /// Declare Boundary conditions/<name> for each of @p boundaries.
     static void
-    declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &                          prm,
+                       const std::vector<Geometry::NamedBoundary> &boundaries);
     void
-    parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &                          prm,
+                     const std::vector<Geometry::NamedBoundary> &boundaries);
 
     /// Add the velocity constraints at time @p time to @p constraints for a
-    /// Stokes element whose components 0, 1 are the velocity.
+    /// Stokes element whose first dim components are the velocity.
     void
-    constrain_velocity(const DoFHandler<2> &        dof_handler,
-                       const double                 time,
+    constrain_velocity(const DoFHandler<dim> &    dof_handler,
+                       const double               time,
                        AffineConstraints<double> &constraints) const;
 
-    /// With an outflow boundary the outlet fixes the pressure level;
-    /// otherwise the pressure is determined up to a constant.
+    /// Identify the coarse faces of each periodic pair (before refinement).
+    void
+    add_periodicity(parallel::distributed::Triangulation<dim> &triangulation) const;
+
+    /// Make every component of @p dof_handler's field equal on the two
+    /// boundaries of each periodic pair.
+    void
+    constrain_periodic(const DoFHandler<dim> &    dof_handler,
+                       AffineConstraints<double> &constraints) const;
+
+    /// A boundary with a prescribed normal traction (outflow, pressure,
+    /// traction free) fixes the pressure level; otherwise the pressure is
+    /// determined up to a constant (mean zero).
     bool
-    has_outflow() const;
+    fixes_pressure_level() const;
 
     /// The boundary with id @p id; every boundary id of the mesh has one.
     const Boundary &

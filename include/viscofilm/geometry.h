@@ -1,4 +1,6 @@
-// The channel: a rectangle meshed with quadrilaterals (MODEL.md §3).
+// The domain and its mesh: the thesis' channel (a rectangle, MODEL.md §3), a
+// channel with a cylinder, or a quadrilateral mesh read from a gmsh file; and
+// the named boundaries of that mesh.
 #ifndef viscofilm_geometry_h
 #define viscofilm_geometry_h
 
@@ -7,55 +9,85 @@
 
 #include <deal.II/distributed/tria.h>
 
-#include <array>
+#include <deal.II/grid/tria.h>
+
+#include <viscofilm/dimension.h>
+
+#include <string>
+#include <vector>
 
 namespace viscofilm
 {
   using namespace dealii;
 
-  /// Boundary ids, as deal.II's colorized rectangle numbers them.
+  /// Boundary ids of the built-in meshes (deal.II's colorized numbering).
   namespace BoundaryId
   {
-    constexpr types::boundary_id inlet  = 0; // x = min
-    constexpr types::boundary_id outlet = 1; // x = max
-    constexpr types::boundary_id bottom = 2; // y = min
-    constexpr types::boundary_id top    = 3; // y = max
+    constexpr types::boundary_id inlet    = 0; // x = min
+    constexpr types::boundary_id outlet   = 1; // x = max
+    constexpr types::boundary_id bottom   = 2; // y = min
+    constexpr types::boundary_id top      = 3; // y = max
+    constexpr types::boundary_id cylinder = 4; // channel with cylinder
   } // namespace BoundaryId
 
   class Geometry
   {
   public:
+    enum class Mesh
+    {
+      channel,
+      channel_with_cylinder,
+      gmsh
+    };
+
+    /// A boundary of the mesh, as the parameter file names it.
+    struct NamedBoundary
+    {
+      types::boundary_id id;
+      std::string        name;
+      /// Boundary conditions/<name>/Type's default; empty: none (must be set).
+      std::string default_type;
+      /// The coordinate axis every face's normal is parallel to; -1: none.
+      int normal_axis;
+    };
+
     static void
     declare_parameters(ParameterHandler &prm);
+    /// @p directory: that of the parameter file, which a relative Mesh file
+    /// is read from. Reads a gmsh file to learn its boundaries.
     void
-    parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &prm, const std::string &directory = "");
 
-    /// Square-ish coarse cells refined globally; boundary ids as BoundaryId.
+    /// The coarse mesh with its manifolds (also what a saved mesh is loaded
+    /// into); boundary ids as boundaries() lists them.
     void
-    make_grid(parallel::distributed::Triangulation<2> &triangulation) const;
+    make_coarse_grid(Triangulation<dim> &triangulation) const;
 
-    /// The coarse mesh alone (what a saved mesh is loaded into).
-    void
-    make_coarse_grid(parallel::distributed::Triangulation<2> &triangulation) const;
+    /// The boundaries of the mesh, ordered by id.
+    const std::vector<NamedBoundary> &
+    boundaries() const;
 
-    /// Edge length of the initial cells (the thesis' Δx at refinement 5).
+    /// Edge length of the initial cells: the thesis' Δx at refinement 5 for
+    /// the channel, the smallest coarse edge refined for the other meshes.
     double
     initial_cell_size() const;
 
-    bool
-    contains(const Point<2> &p) const;
-
-    double
-    area() const;
-
-    Point<2>     lower_left;
-    Point<2>     upper_right;
+    Mesh         mesh = Mesh::channel;
+    /// The channel's corners; for a gmsh mesh its bounding box.
+    Point<dim>   lower_left;
+    Point<dim>   upper_right;
+    Point<dim>   cylinder_centre;
+    double       cylinder_radius    = 1;
+    std::string  mesh_file;          // as resolved against the .prm's directory
     unsigned int initial_refinement = 5;
 
   private:
-    /// Coarse cells per direction, chosen so that coarse cells are squares.
-    std::array<unsigned int, 2>
+    /// Coarse cells per direction of the channel, so that they are squares.
+    std::vector<unsigned int>
     coarse_repetitions() const;
+
+    std::vector<NamedBoundary> named_boundaries;
+    double                     smallest_coarse_edge = 1;
   };
 } // namespace viscofilm
 

@@ -1,17 +1,23 @@
 // Loads on the biofilm (the thesis' future work, doc/loads.md): the total
 // stress σ = −p I + 2η(φ) D(u) + φτ evaluated as wall shear stress, traction
-// on the biofilm interface and a von Mises detachment indicator.
+// on the biofilm interface, a von Mises detachment indicator and the force on
+// named boundaries.
 #ifndef viscofilm_loads_h
 #define viscofilm_loads_h
 
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/types.h>
 
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
+#include <viscofilm/dimension.h>
 #include <viscofilm/model.h>
 
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace viscofilm
 {
@@ -21,21 +27,43 @@ namespace viscofilm
   class VolumeFraction;
   class ElasticStress;
   class CsvFile;
+  class BoundaryConditions;
 
   class BiofilmLoads
   {
   public:
     struct Parameters
     {
+      /// How the force on a boundary is computed.
+      enum class ForceMethod
+      {
+        consistent,      // −R(v): the residual of the discrete momentum equation
+        surface_integral // −∫_Γ σ n ds with the face values of the fields
+      };
+
+      /// A named boundary and its id.
+      struct NamedBoundary
+      {
+        std::string        name;
+        types::boundary_id id;
+      };
+
       static void
       declare_parameters(ParameterHandler &prm);
+      /// Boundary names are resolved with @p boundary_conditions.
       void
-      parse_parameters(ParameterHandler &prm);
+      parse_parameters(ParameterHandler &        prm,
+                       const BoundaryConditions &boundary_conditions);
 
       /// σ_vm above which the biofilm counts as prone to detach.
       double stress_threshold = 1.0;
       /// The biofilm is φ >= this; its interface the contour φ = this.
       double interface_level = 0.05;
+      /// The walls of the wall shear stress.
+      std::vector<NamedBoundary> walls;
+      /// The boundaries whose force goes into statistics.csv.
+      std::vector<NamedBoundary> force_boundaries;
+      ForceMethod                force_method = ForceMethod::consistent;
     };
 
     BiofilmLoads(const Parameters &    parameters,
@@ -45,7 +73,8 @@ namespace viscofilm
                  const ElasticStress & stress);
 
     /// Columns wall_shear_stress_mean/max, interface_traction_mean/max,
-    /// von_mises_max, detachment_area (collective).
+    /// von_mises_max, detachment_area and force_x_<name>, force_y_<name>
+    /// per force boundary (collective).
     void
     add_statistics(CsvFile &statistics) const;
 
@@ -54,6 +83,10 @@ namespace viscofilm
     add_output(DataOut<2> &data_out);
 
   private:
+    /// The force the fluid exerts on each force boundary (collective).
+    std::vector<Tensor<1, dim>>
+    boundary_forces() const;
+
     const Parameters &    parameters;
     const Model &         model;
     const StokesSolver &  stokes;

@@ -26,12 +26,16 @@ namespace viscofilm
 
   struct Parameters
   {
+    /// Declare every parameter; Boundary conditions has a subsection for
+    /// each of @p boundaries (Geometry::boundaries() of the parsed mesh).
     static void
-    declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &                          prm,
+                       const std::vector<Geometry::NamedBoundary> &boundaries);
 
     /// Parse every subsection; throws ExcInput on inconsistent input.
+    /// @p directory: that of the parameter file (Geometry/Mesh file).
     void
-    parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &prm, const std::string &directory);
 
     Geometry                 geometry;
     MeshRefinement           mesh_refinement;

@@ -51,8 +51,16 @@ namespace viscofilm
       unsigned int transport_iterations    = 0;
     };
 
+    /// The coarse mesh with its periodic pairs, refined globally; checks
+    /// that every probe point lies in the mesh.
     void
     make_grid();
+    /// The coarse mesh with its periodic pairs (also what a checkpoint's
+    /// mesh is loaded into).
+    void
+    make_coarse_grid();
+    void
+    check_probe_points() const;
     void
     setup_dofs();
     /// Adapt the mesh (MeshRefinement), carrying u, p, c and φ over; false

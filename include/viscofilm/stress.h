@@ -64,7 +64,8 @@ namespace viscofilm
 
     ElasticStress(const parallel::distributed::Triangulation<2> &triangulation,
                   const Parameters &                             parameters,
-                  const Model &                                  model);
+                  const Model &                                  model,
+                  const BoundaryConditions &boundary_conditions);
 
     /// Distribute dofs and list the stress nodes; @p quadrature is the one
     /// the Stokes assembly asks τ at.
@@ -80,11 +81,10 @@ namespace viscofilm
     /// there; a foot on an inflow boundary takes that boundary's Stress at
     /// @p time (t_{n+1}) instead.
     void
-    trace_back(DepartureFeet &           feet,
-               const StokesSolver &      stokes,
-               const BoundaryConditions &boundary_conditions,
-               const double              time,
-               const double              time_step);
+    trace_back(DepartureFeet &     feet,
+               const StokesSolver & stokes,
+               const double         time,
+               const double         time_step);
 
     /// MODEL.md §3 step 2b: c^{n+1} at every node from the current Stokes
     /// iterate, φ^n and c^n at the feet (closed form, eq. 3.40-3.44).
@@ -182,6 +182,7 @@ namespace viscofilm
     const parallel::distributed::Triangulation<2> &triangulation;
     const Parameters &                             parameters;
     const Model &                                  model;
+    const BoundaryConditions &boundary_conditions;
 
     const FESystem<2>             fe;
     DoFHandler<2>                 dofs;
