@@ -246,7 +246,7 @@ namespace viscofilm
     {
       TimerOutput::Scope t(*computing_timer, "departure feet");
       if (viscoelastic)
-        stress.trace_back(departure_feet, stokes, time, k);
+        stress.trace_back(departure_feet, stokes, time - k, k); // c^n at t_n
       stokes.trace_back(departure_feet, k);
     }
 

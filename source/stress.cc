@@ -307,7 +307,7 @@ namespace viscofilm
         if (inflow[i] != numbers::invalid_boundary_id)
           {
             // The characteristic enters through boundary inflow[i]: its
-            // Stress at the cut, at t_{n+1}.
+            // Stress at the cut, at t_n like c^n at the other feet.
             FunctionParser<dim> &stress = boundary_conditions.boundary(inflow[i]).stress.function();
             stress.set_time(time);
             stress.vector_value(at_feet[i], tau);

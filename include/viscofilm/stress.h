@@ -79,7 +79,7 @@ namespace viscofilm
 
     /// MODEL.md §3 step 1: the nodes' departure feet from u^n and c^n
     /// there; a foot on an inflow boundary takes that boundary's Stress at
-    /// @p time (t_{n+1}) instead.
+    /// the cut and @p time (t_n, the time of the other feet's values).
     void
     trace_back(DepartureFeet &     feet,
                const StokesSolver & stokes,
