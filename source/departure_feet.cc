@@ -53,24 +53,28 @@ namespace viscofilm
           return {cell, unit_b, b, numbers::invalid_unsigned_int, true};
         // The face through which the segment a–b leaves the cell (in
         // reference coordinates: exact on parallelograms): the first one
-        // b lies beyond.
+        // b lies beyond, by more than the tolerance (a segment along a
+        // wall, b beyond it by round-off, leaves through the far face).
         const Point<dim> unit_a =
           GeometryInfo<dim>::project_to_unit_cell(mapping().transform_real_to_unit_cell(cell, a));
-        unsigned int face = 0;
+        unsigned int face = numbers::invalid_unsigned_int;
         double       exit = std::numeric_limits<double>::max();
         for (unsigned int d = 0; d < dim; ++d)
           {
-            if (unit_b[d] < 0 && unit_a[d] / (unit_a[d] - unit_b[d]) < exit)
+            if (unit_b[d] < -unit_tolerance && unit_a[d] / (unit_a[d] - unit_b[d]) < exit)
               {
                 exit = unit_a[d] / (unit_a[d] - unit_b[d]);
                 face = 2 * d;
               }
-            if (unit_b[d] > 1 && (1 - unit_a[d]) / (unit_b[d] - unit_a[d]) < exit)
+            if (unit_b[d] > 1 + unit_tolerance &&
+                (1 - unit_a[d]) / (unit_b[d] - unit_a[d]) < exit)
               {
                 exit = (1 - unit_a[d]) / (unit_b[d] - unit_a[d]);
                 face = 2 * d + 1;
               }
           }
+        if (face == numbers::invalid_unsigned_int) // b within round-off of the cell
+          return {cell, unit_b, b, numbers::invalid_unsigned_int, true};
         Point<dim> unit_exit = unit_a + exit * (unit_b - unit_a);
         unit_exit[face / 2]  = face % 2;
         unit_exit = GeometryInfo<dim>::project_to_unit_cell(unit_exit);
