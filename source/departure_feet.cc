@@ -21,16 +21,16 @@ namespace viscofilm
     // default of RemotePointEvaluation, so that both paths agree.
     constexpr double unit_tolerance = 1e-6;
 
-    const Mapping<2> &
+    const Mapping<dim> &
     mapping()
     {
-      return StaticMappingQ1<2>::mapping;
+      return StaticMappingQ1<dim>::mapping;
     }
   } // namespace
 
 
   PointEvaluator::PointEvaluator(
-    const parallel::distributed::Triangulation<2> &triangulation,
+    const parallel::distributed::Triangulation<dim> &triangulation,
     const unsigned int                             max_walk_steps)
     : triangulation(triangulation)
     , max_walk_steps(max_walk_steps)
@@ -38,70 +38,121 @@ namespace viscofilm
   {}
 
 
-  std::optional<std::pair<Triangulation<2>::active_cell_iterator, Point<2>>>
-  PointEvaluator::walk(Triangulation<2>::active_cell_iterator cell,
-                       const Point<2> &                       p) const
+  PointEvaluator::Trace
+  PointEvaluator::trace(Triangulation<dim>::active_cell_iterator cell,
+                        const Point<dim> &                       from,
+                        const Point<dim> &                       to) const
   {
     // Feet lie a few cells from their nodes; a longer walk is left to the
     // global search.
+    Point<dim> a = from, b = to; // the segment, in the frame of cell
     for (unsigned int step = 0; step < max_walk_steps && !cell->is_artificial(); ++step)
       {
-        const Point<2> unit = mapping().transform_real_to_unit_cell(cell, p);
-        if (GeometryInfo<2>::distance_to_unit_cell(unit) < unit_tolerance)
-          return std::make_pair(cell, unit);
-        // Leave through the face p lies farthest beyond.
-        unsigned int face   = 0;
-        double       beyond = 0;
-        for (unsigned int d = 0; d < 2; ++d)
+        const Point<dim> unit_b = mapping().transform_real_to_unit_cell(cell, b);
+        if (GeometryInfo<dim>::distance_to_unit_cell(unit_b) < unit_tolerance)
+          return {cell, unit_b, b, numbers::invalid_unsigned_int, true};
+        // The face through which the segment a–b leaves the cell (in
+        // reference coordinates: exact on parallelograms): the first one
+        // b lies beyond, by more than the tolerance (a segment along a
+        // wall, b beyond it by round-off, leaves through the far face).
+        const Point<dim> unit_a =
+          GeometryInfo<dim>::project_to_unit_cell(mapping().transform_real_to_unit_cell(cell, a));
+        unsigned int face = numbers::invalid_unsigned_int;
+        double       exit = std::numeric_limits<double>::max();
+        for (unsigned int d = 0; d < dim; ++d)
           {
-            if (-unit[d] > beyond)
+            if (unit_b[d] < -unit_tolerance && unit_a[d] / (unit_a[d] - unit_b[d]) < exit)
               {
-                beyond = -unit[d];
-                face   = 2 * d;
+                exit = unit_a[d] / (unit_a[d] - unit_b[d]);
+                face = 2 * d;
               }
-            if (unit[d] - 1 > beyond)
+            if (unit_b[d] > 1 + unit_tolerance &&
+                (1 - unit_a[d]) / (unit_b[d] - unit_a[d]) < exit)
               {
-                beyond = unit[d] - 1;
-                face   = 2 * d + 1;
+                exit = (1 - unit_a[d]) / (unit_b[d] - unit_a[d]);
+                face = 2 * d + 1;
               }
           }
-        if (cell->at_boundary(face))
-          break;
-        Triangulation<2>::cell_iterator next = cell->neighbor(face);
+        if (face == numbers::invalid_unsigned_int) // b within round-off of the cell
+          return {cell, unit_b, b, numbers::invalid_unsigned_int, true};
+        Point<dim> unit_exit = unit_a + exit * (unit_b - unit_a);
+        unit_exit[face / 2]  = face % 2;
+        unit_exit = GeometryInfo<dim>::project_to_unit_cell(unit_exit);
+        const Point<dim> crossing = mapping().transform_unit_to_real_cell(cell, unit_exit);
+
+        Triangulation<dim>::cell_iterator next;
+        if (cell->has_periodic_neighbor(face))
+          {
+            // Continue on the partner side, shifted by the period (face
+            // centres of equal faces; a coarser partner's face is our
+            // parent's).
+            next = cell->periodic_neighbor(face);
+            const Point<dim> here =
+              cell->periodic_neighbor_is_coarser(face) ? cell->parent()->face(face)->center() :
+                                                         cell->face(face)->center();
+            const Tensor<1, dim> period =
+              next->face(cell->periodic_neighbor_face_no(face))->center() - here;
+            a = crossing + period;
+            b += period;
+          }
+        else if (cell->at_boundary(face))
+          return {cell, unit_exit, crossing, face, true}; // the cut
+        else
+          {
+            next = cell->neighbor(face);
+            a    = crossing;
+          }
+        // Into the child of a refined neighbour that holds the crossing.
         while (next->has_children())
           {
-            unsigned int nearest = 0;
-            for (unsigned int c = 1; c < next->n_children(); ++c)
-              if (next->child(c)->center().distance(p) <
-                  next->child(nearest)->center().distance(p))
-                nearest = c;
+            unsigned int nearest  = 0;
+            double       distance = std::numeric_limits<double>::max();
+            for (unsigned int c = 0; c < next->n_children(); ++c)
+              {
+                const double d = GeometryInfo<dim>::distance_to_unit_cell(
+                  mapping().transform_real_to_unit_cell(next->child(c), a));
+                if (d < distance)
+                  {
+                    distance = d;
+                    nearest  = c;
+                  }
+              }
             next = next->child(nearest);
           }
         cell = next;
       }
-    return std::nullopt;
+    Trace lost;
+    lost.point = b;
+    return lost;
   }
 
 
   void
-  PointEvaluator::reinit(const std::vector<Point<2>> &                        points,
-                         std::vector<Triangulation<2>::active_cell_iterator> &hints)
+  PointEvaluator::reinit(const std::vector<Point<dim>> &                         origins,
+                         const std::vector<Point<dim>> &                         points,
+                         std::vector<Triangulation<dim>::active_cell_iterator> &hints)
   {
     AssertDimension(points.size(), hints.size());
+    AssertDimension(points.size(), origins.size());
     n_points = points.size();
     local.clear();
     remote_points.clear();
+    located.resize(n_points);
     for (unsigned int i = 0; i < points.size(); ++i)
-      if (const auto found = walk(hints[i], points[i]))
-        {
-          // The first cell on the walk that holds the point, even if the
-          // point is on a face it shares: a discontinuous field is taken
-          // from the side the walk came from, not averaged across the face.
-          hints[i] = found->first;
-          local.push_back({found->first, found->second, i});
-        }
-      else
-        remote_points.push_back(i);
+      {
+        const Trace found = trace(hints[i], origins[i], points[i]);
+        located[i]        = found.point;
+        if (found.found)
+          {
+            // The first cell on the walk that holds the point, even if the
+            // point is on a face it shares: a discontinuous field is taken
+            // from the side the walk came from, not averaged across the face.
+            hints[i] = found.cell;
+            local.push_back({found.cell, found.unit_point, i});
+          }
+        else
+          remote_points.push_back(i);
+      }
     std::sort(local.begin(), local.end(), [](const LocalPoint &a, const LocalPoint &b) {
       return a.cell < b.cell;
     });
@@ -110,11 +161,18 @@ namespace viscofilm
     any_remote = Utilities::MPI::max(remote_points.empty() ? 0u : 1u, comm) > 0;
     if (any_remote)
       {
-        std::vector<Point<2>> remote_locations;
+        std::vector<Point<dim>> remote_locations;
         for (const unsigned int i : remote_points)
-          remote_locations.push_back(points[i]);
+          remote_locations.push_back(located[i]);
         remote.reinit(remote_locations, triangulation, mapping());
       }
+  }
+
+
+  const std::vector<Point<dim>> &
+  PointEvaluator::located_points() const
+  {
+    return located;
   }
 
 
@@ -124,7 +182,7 @@ namespace viscofilm
   {
     using Value = std::array<double, n>;
     std::vector<Value>    result(n_points, Value{});
-    std::vector<Point<2>> unit_points;
+    std::vector<Point<dim>> unit_points;
     std::vector<Value>    values;
     for (auto begin = local.begin(); begin != local.end();)
       {
@@ -146,16 +204,16 @@ namespace viscofilm
       contributions,
       buffer,
       [&](const ArrayView<Value> &values,
-          const typename Utilities::MPI::RemotePointEvaluation<2>::CellData &data) {
+          const typename Utilities::MPI::RemotePointEvaluation<dim>::CellData &data) {
         for (unsigned int c = 0; c < data.cells.size(); ++c)
           {
-            const Triangulation<2>::active_cell_iterator cell(&triangulation,
+            const Triangulation<dim>::active_cell_iterator cell(&triangulation,
                                                               data.cells[c].first,
                                                               data.cells[c].second);
             const unsigned int begin = data.reference_point_ptrs[c];
             const unsigned int count = data.reference_point_ptrs[c + 1] - begin;
             evaluate_cell(cell,
-                          ArrayView<const Point<2>>(
+                          ArrayView<const Point<dim>>(
                             data.reference_point_values.data() + begin, count),
                           ArrayView<Value>(values.data() + begin, count));
           }
@@ -192,19 +250,19 @@ namespace viscofilm
 
   std::vector<std::array<double, 6>>
   evaluate_velocity(const PointEvaluator &                    points,
-                    const DoFHandler<2> &                     stokes_dofs,
+                    const DoFHandler<dim> &                     stokes_dofs,
                     const TrilinosWrappers::MPI::BlockVector &stokes_solution)
   {
-    FEPointEvaluation<2, 2> velocity(mapping(),
+    FEPointEvaluation<dim, dim> velocity(mapping(),
                                      stokes_dofs.get_fe(),
                                      update_values | update_gradients,
                                      0);
     std::vector<double> dof_values(stokes_dofs.get_fe().n_dofs_per_cell());
     return points.evaluate<6>(
-      [&](const Triangulation<2>::active_cell_iterator &cell,
-          const ArrayView<const Point<2>> &             unit_points,
+      [&](const Triangulation<dim>::active_cell_iterator &cell,
+          const ArrayView<const Point<dim>> &             unit_points,
           const ArrayView<std::array<double, 6>> &      values) {
-        const DoFHandler<2>::active_cell_iterator dof_cell(&stokes_dofs.get_triangulation(),
+        const DoFHandler<dim>::active_cell_iterator dof_cell(&stokes_dofs.get_triangulation(),
                                                            cell->level(),
                                                            cell->index(),
                                                            &stokes_dofs);
@@ -214,8 +272,8 @@ namespace viscofilm
                           EvaluationFlags::values | EvaluationFlags::gradients);
         for (unsigned int q = 0; q < unit_points.size(); ++q)
           {
-            const Tensor<1, 2>               u    = velocity.get_value(q);
-            const Tensor<1, 2, Tensor<1, 2>> grad = velocity.get_gradient(q);
+            const Tensor<1, dim>               u    = velocity.get_value(q);
+            const Tensor<1, dim, Tensor<1, dim>> grad = velocity.get_gradient(q);
             values[q] = {{u[0], u[1], grad[0][0], grad[0][1], grad[1][0], grad[1][1]}};
           }
       });
@@ -266,26 +324,24 @@ namespace viscofilm
 
   DepartureFeet::DepartureFeet(
     const Parameters &                             parameters,
-    const Geometry &                               geometry,
-    const parallel::distributed::Triangulation<2> &triangulation)
+    const parallel::distributed::Triangulation<dim> &triangulation)
     : parameters(parameters)
-    , geometry(geometry)
     , triangulation(triangulation)
     , evaluator(triangulation, parameters.max_walk_steps)
   {}
 
 
   bool
-  DepartureFeet::inside_patch(const Triangulation<2>::active_cell_iterator &cell,
-                              const Point<2> &                              x,
-                              const Point<2> &                              y) const
+  DepartureFeet::inside_patch(const Triangulation<dim>::active_cell_iterator &cell,
+                              const Point<dim> &                              x,
+                              const Point<dim> &                              y) const
   {
     // The cell's box, widened by one cell across each face x lies on: the
     // patch of cells sharing x on our rectangular meshes.
-    const BoundingBox<2> box   = cell->bounding_box();
-    Point<2>             lower = box.get_boundary_points().first;
-    Point<2>             upper = box.get_boundary_points().second;
-    for (unsigned int d = 0; d < 2; ++d)
+    const BoundingBox<dim> box   = cell->bounding_box();
+    Point<dim>             lower = box.get_boundary_points().first;
+    Point<dim>             upper = box.get_boundary_points().second;
+    for (unsigned int d = 0; d < dim; ++d)
       {
         const double width = upper[d] - lower[d];
         const double tol   = 1e-10 * width;
@@ -302,37 +358,31 @@ namespace viscofilm
   }
 
 
-  Point<2>
-  DepartureFeet::project_into_domain(const Point<2> &p) const
-  {
-    Point<2> q;
-    for (unsigned int d = 0; d < 2; ++d)
-      q[d] = std::clamp(p[d], geometry.lower_left[d], geometry.upper_right[d]);
-    return q;
-  }
-
-
-  std::vector<Point<2>>
+  std::vector<Point<dim>>
   DepartureFeet::compute(
-    const std::vector<Point<2>> &                              points,
-    const std::vector<Triangulation<2>::active_cell_iterator> &cells,
-    const DoFHandler<2> &                                      stokes_dofs,
-    const TrilinosWrappers::MPI::BlockVector &                 stokes_solution,
-    const double                                               time_step)
+    const std::vector<Point<dim>> &                              points,
+    const std::vector<Triangulation<dim>::active_cell_iterator> &cells,
+    const DoFHandler<dim> &                                      stokes_dofs,
+    const TrilinosWrappers::MPI::BlockVector &                   stokes_solution,
+    const double                                                 time_step)
   {
     const MPI_Comm comm      = triangulation.get_communicator();
-    const double   tolerance =
-      parameters.newton_tolerance *
-      GridTools::minimal_cell_diameter(triangulation) / std::sqrt(2.0);
+    const double   tolerance = parameters.newton_tolerance *
+                             GridTools::minimal_cell_diameter(triangulation) /
+                             std::sqrt(double(dim));
 
-    std::vector<Point<2>>                               feet(points);
-    std::vector<Triangulation<2>::active_cell_iterator> hints(cells);
+    // The iterates y, unwrapped across periodic faces (the segment x–y is
+    // the characteristic); a foot cut at the boundary stops there.
+    std::vector<Point<dim>>                             feet(points);
+    std::vector<PointEvaluator::Trace>                  cuts(points.size());
+    std::vector<Triangulation<dim>::active_cell_iterator> hints;
     std::vector<unsigned int>                           active(points.size());
     for (unsigned int i = 0; i < points.size(); ++i)
       active[i] = i;
 
-    unsigned int                             iteration = 0;
-    unsigned int                             n_left_domain = 0;
+    unsigned int iteration     = 0;
+    unsigned int n_left_domain = 0;
+    double       max_speed     = 0; // at the points (the first midpoints)
     while (Utilities::MPI::max(static_cast<unsigned int>(active.size()), comm) > 0)
       {
         AssertThrow(
@@ -351,37 +401,52 @@ namespace viscofilm
           }()));
         ++iteration;
 
-        std::vector<Point<2>>                               midpoints(active.size());
-        std::vector<Triangulation<2>::active_cell_iterator> midpoint_cells(active.size());
+        // Midpoints along the segment from x's own cell: cut at the boundary
+        // and wrapped like the feet.
+        std::vector<Point<dim>> origins(active.size()), midpoints(active.size());
+        hints.resize(active.size());
         for (unsigned int j = 0; j < active.size(); ++j)
           {
-            midpoints[j] = project_into_domain(
-              Point<2>(0.5 * (points[active[j]] + feet[active[j]])));
-            midpoint_cells[j] = hints[active[j]];
+            origins[j]   = points[active[j]];
+            midpoints[j] = Point<dim>(0.5 * (points[active[j]] + feet[active[j]]));
+            hints[j]     = cells[active[j]];
           }
-        evaluator.reinit(midpoints, midpoint_cells);
+        evaluator.reinit(origins, midpoints, hints);
         const auto values = evaluate_velocity(evaluator, stokes_dofs, stokes_solution);
-        for (unsigned int j = 0; j < active.size(); ++j)
-          hints[active[j]] = midpoint_cells[j];
+        if (iteration == 1)
+          for (const auto &v : values)
+            {
+              double square = 0;
+              for (unsigned int d = 0; d < dim; ++d)
+                square += v[d] * v[d];
+              max_speed = std::max(max_speed, std::sqrt(square));
+            }
 
         std::vector<unsigned int> still_active;
         for (unsigned int j = 0; j < active.size(); ++j)
           {
-            const unsigned int  i = active[j];
-            const auto &        v = values[j];
-            const Tensor<1, 2>  G = feet[i] - points[i] +
-                                   time_step * Tensor<1, 2>({v[0], v[1]});
+            const unsigned int i = active[j];
+            const auto &       v = values[j];
+            Tensor<1, dim>     G = feet[i] - points[i];
+            Tensor<2, dim>     jacobian; // ∇G = I + (k/2) ∇u
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                G[d] += time_step * v[d];
+                for (unsigned int e = 0; e < dim; ++e)
+                  jacobian[d][e] = (d == e) + 0.5 * time_step * v[dim + dim * d + e];
+              }
             if (G.norm() <= tolerance)
               continue;
-            Tensor<2, 2> jacobian;
-            jacobian[0][0] = 1 + 0.5 * time_step * v[2];
-            jacobian[0][1] = 0.5 * time_step * v[3];
-            jacobian[1][0] = 0.5 * time_step * v[4];
-            jacobian[1][1] = 1 + 0.5 * time_step * v[5];
-            const Point<2> next = feet[i] - invert(jacobian) * G;
-            feet[i]             = project_into_domain(next);
-            if (feet[i].distance(next) > tolerance)
-              ++n_left_domain; // the characteristic enters through the boundary
+            feet[i] = feet[i] - invert(jacobian) * G;
+            // Does the characteristic enter through the boundary?
+            const PointEvaluator::Trace cut = evaluator.trace(cells[i], points[i], feet[i]);
+            if (cut.found && cut.cut_face != numbers::invalid_unsigned_int &&
+                cut.point.distance(feet[i]) > tolerance)
+              {
+                feet[i] = cut.point;
+                cuts[i] = cut;
+                ++n_left_domain;
+              }
             else
               still_active.push_back(i);
           }
@@ -390,19 +455,55 @@ namespace viscofilm
 
     // Walk to each foot from its point's own cell: a foot on that cell's
     // boundary (a stagnant node's) takes that cell's values (upwind).
-    std::vector<Triangulation<2>::active_cell_iterator> own_cells(cells);
-    evaluator.reinit(feet, own_cells);
+    std::vector<Triangulation<dim>::active_cell_iterator> own_cells(cells);
+    evaluator.reinit(points, feet, own_cells);
+
+    // Inflow where u·n < 0 at the cut, relative to the velocity scale as
+    // VolumeFraction's inflow faces: a wall crossed by round-off is none.
+    max_speed = Utilities::MPI::max(max_speed, comm);
+    inflow.assign(points.size(), numbers::invalid_boundary_id);
+    FEPointEvaluation<dim, dim> velocity(mapping(),
+                                         stokes_dofs.get_fe(),
+                                         update_values | update_gradients,
+                                         0);
+    std::vector<double> dof_values(stokes_dofs.get_fe().n_dofs_per_cell());
+    for (unsigned int i = 0; i < points.size(); ++i)
+      if (cuts[i].found)
+        {
+          const DoFHandler<dim>::active_cell_iterator dof_cell(&triangulation,
+                                                               cuts[i].cell->level(),
+                                                               cuts[i].cell->index(),
+                                                               &stokes_dofs);
+          dof_cell->get_dof_values(stokes_solution, dof_values.begin(), dof_values.end());
+          velocity.reinit(cuts[i].cell, make_array_view(&cuts[i].unit_point, &cuts[i].unit_point + 1));
+          velocity.evaluate(dof_values, EvaluationFlags::values);
+          // Outward normal of face f: ∓∇ξ_d, d = f/2, a row of J^{-1}.
+          const unsigned int f = cuts[i].cut_face;
+          Tensor<1, dim>     normal;
+          for (unsigned int e = 0; e < dim; ++e)
+            normal[e] = velocity.inverse_jacobian(0)[f / 2][e];
+          normal *= (f % 2 == 0 ? -1. : 1.) / normal.norm();
+          if (velocity.get_value(0) * normal < -1e-8 * max_speed)
+            inflow[i] = cuts[i].cell->face(f)->boundary_id();
+        }
 
     unsigned int n_left_cell = 0;
     for (unsigned int i = 0; i < points.size(); ++i)
-      if (!inside_patch(cells[i], points[i], feet[i]))
+      if (!inside_patch(cells[i], points[i], evaluator.located_points()[i]))
         ++n_left_cell;
 
     accumulated.max_newton_iterations =
       std::max(accumulated.max_newton_iterations, iteration);
     accumulated.n_left_cell += Utilities::MPI::sum(n_left_cell, comm);
     accumulated.n_left_domain += Utilities::MPI::sum(n_left_domain, comm);
-    return feet;
+    return evaluator.located_points();
+  }
+
+
+  const std::vector<types::boundary_id> &
+  DepartureFeet::inflow_boundaries() const
+  {
+    return inflow;
   }
 
 

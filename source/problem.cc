@@ -36,7 +36,7 @@ namespace viscofilm
              parameters.stress,
              parameters.model,
              parameters.boundary_conditions)
-    , departure_feet(parameters.departure_feet, parameters.geometry, triangulation)
+    , departure_feet(parameters.departure_feet, triangulation)
     , loads(parameters.detachment,
             parameters.model,
             stokes,
@@ -246,7 +246,7 @@ namespace viscofilm
     {
       TimerOutput::Scope t(*computing_timer, "departure feet");
       if (viscoelastic)
-        stress.trace_back(departure_feet, stokes, k);
+        stress.trace_back(departure_feet, stokes, time - k, k); // c^n at t_n
       stokes.trace_back(departure_feet, k);
     }
 

@@ -215,9 +215,10 @@ namespace viscofilm
             node.position;
         if (model.viscoelastic)
           initial_stress.vector_value(inside, tau);
-        distributed[node.dofs[0]] = tau[0] + shift();
-        distributed[node.dofs[1]] = tau[1];
-        distributed[node.dofs[2]] = tau[2] + shift();
+        const SymmetricTensor<2, dim> c = conformation(tau);
+        distributed[node.dofs[0]]       = c[0][0];
+        distributed[node.dofs[1]]       = c[0][1];
+        distributed[node.dofs[2]]       = c[1][1];
       }
     distributed.compress(VectorOperation::insert);
     hanging_node_constraints.distribute(distributed);
@@ -227,9 +228,18 @@ namespace viscofilm
   }
 
 
+  SymmetricTensor<2, dim>
+  ElasticStress::conformation(const Vector<double> &tau) const
+  {
+    AssertDimension(tau.size(), n_symmetric_components);
+    return SymmetricTensor<2, dim>({tau[0] + shift(), tau[2] + shift(), tau[1]});
+  }
+
+
   void
   ElasticStress::trace_back(DepartureFeet &     feet,
                             const StokesSolver &stokes,
+                            const double        time,
                             const double        time_step)
   {
     std::vector<Point<2>>                               points(nodes.size());
@@ -287,12 +297,25 @@ namespace viscofilm
       };
 
     const auto   values = feet.at_feet().evaluate<4>(evaluate);
-    unsigned int remote = 0;
+    const std::vector<types::boundary_id> &inflow   = feet.inflow_boundaries();
+    const std::vector<Point<dim>> &        at_feet  = feet.at_feet().located_points();
+    unsigned int                           remote   = 0;
+    Vector<double>                         tau(n_symmetric_components);
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
         const auto &v = values[i];
-        nodes[i].foot_conformation =
-          SymmetricTensor<2, 2>({v[0], v[2], v[1]}); // (xx, yy, xy)
+        if (inflow[i] != numbers::invalid_boundary_id)
+          {
+            // The characteristic enters through boundary inflow[i]: its
+            // Stress at the cut, at t_n like c^n at the other feet.
+            FunctionParser<dim> &stress = boundary_conditions.boundary(inflow[i]).stress.function();
+            stress.set_time(time);
+            stress.vector_value(at_feet[i], tau);
+            nodes[i].foot_conformation = ElasticStress::conformation(tau);
+          }
+        else
+          nodes[i].foot_conformation =
+            SymmetricTensor<2, 2>({v[0], v[2], v[1]}); // (xx, yy, xy)
         if (v[3] != this_rank)
           ++remote;
       }

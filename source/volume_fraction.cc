@@ -117,7 +117,6 @@ namespace viscofilm
     constraints.reinit(locally_relevant_dofs);
     DoFTools::make_hanging_node_constraints(dofs, constraints);
     boundary_conditions.constrain_periodic(dofs, constraints);
-    inflow_faces.clear();
     if (stokes != nullptr)
       {
         // Inflow where the mean u·n is below round-off relative to the
@@ -155,7 +154,6 @@ namespace viscofilm
                   const double value =
                     boundary_conditions.boundary(cell->face(f)->boundary_id())
                       .volume_fraction;
-                  inflow_faces[cell->face(f)->index()] = value;
                   cell->face(f)->get_dof_indices(face_dofs);
                   for (const auto dof : face_dofs)
                     if (!constraints.is_constrained(dof))
@@ -367,7 +365,7 @@ namespace viscofilm
     // With u^{n+1}, as the thesis transports φ with it.
     feet.compute(nodes, cells, stokes.dof_handler(), stokes.solution(), time_step);
     std::vector<double> cell_values(fe.n_dofs_per_cell());
-    const auto          at_feet = feet.at_feet().evaluate<3>(
+    auto                at_feet = feet.at_feet().evaluate<3>(
       [&](const Triangulation<2>::active_cell_iterator &cell,
           const ArrayView<const Point<2>> &             unit_points,
           const ArrayView<std::array<double, 3>> &      values) {
@@ -379,25 +377,17 @@ namespace viscofilm
         const auto [low, high] = std::minmax_element(cell_values.begin(), cell_values.end());
         for (unsigned int p = 0; p < unit_points.size(); ++p)
           {
-            // A foot on an inflow face (moved there from outside the
-            // channel) takes the inflow value.
-            std::optional<double> inflow;
-            for (const unsigned int f : cell->face_indices())
-              if (cell->at_boundary(f) &&
-                  std::abs(unit_points[p][f / 2] - f % 2) < 1e-6 &&
-                  inflow_faces.count(cell->face(f)->index()) > 0)
-                inflow = inflow_faces.at(cell->face(f)->index());
-            if (inflow)
-              {
-                values[p] = {{*inflow, *inflow, *inflow}};
-                continue;
-              }
             double value = 0;
             for (unsigned int i = 0; i < cell_values.size(); ++i)
               value += cell_values[i] * fe.shape_value(i, unit_points[p]);
             values[p] = {{value, *low, *high}};
           }
       });
+    // A characteristic entering through boundary b brings b's inflow value.
+    const std::vector<types::boundary_id> &inflow = feet.inflow_boundaries();
+    for (unsigned int n = 0; n < nodes.size(); ++n)
+      if (inflow[n] != numbers::invalid_boundary_id)
+        at_feet[n].fill(boundary_conditions.boundary(inflow[n]).volume_fraction);
 
     TrilinosWrappers::MPI::Vector distributed(owned, mpi_communicator);
     lower.reinit(owned, mpi_communicator);

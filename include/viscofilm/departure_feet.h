@@ -15,7 +15,7 @@
 
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 
-#include <viscofilm/geometry.h>
+#include <viscofilm/dimension.h>
 
 #include <array>
 #include <functional>
@@ -30,8 +30,8 @@ namespace viscofilm
   /// that lie in it (one value of n numbers per point).
   template <int n>
   using CellEvaluation =
-    std::function<void(const Triangulation<2>::active_cell_iterator &cell,
-                       const ArrayView<const Point<2>> &         unit_points,
+    std::function<void(const Triangulation<dim>::active_cell_iterator &cell,
+                       const ArrayView<const Point<dim>> &         unit_points,
                        const ArrayView<std::array<double, n>> &  values)>;
 
   /**
@@ -49,20 +49,57 @@ namespace viscofilm
    * discontinuous field is taken from the hint's side, never averaged. Only
    * a point beyond the ghost layer that RemotePointEvaluation finds on a
    * face gets the mean over the cells sharing it.
+   *
+   * A point is reached along the segment from an origin in the hint cell
+   * (the node it was traced back from): a segment that leaves the mesh
+   * through a boundary face is cut there (the point becomes the crossing),
+   * one that leaves through a periodic face continues on the partner side,
+   * translated by the period (the point becomes its periodic image in the
+   * mesh). No description of the domain is needed, only its cells.
    */
   class PointEvaluator
   {
   public:
     /// A walk crosses at most @p max_walk_steps cells before the point is
     /// left to the global search.
-    PointEvaluator(const parallel::distributed::Triangulation<2> &triangulation,
+    PointEvaluator(const parallel::distributed::Triangulation<dim> &triangulation,
                    const unsigned int                             max_walk_steps);
 
-    /// Locate @p points; @p hints (one per point) become the cells found,
+    /// Where the segment from a point in a cell towards a target ends.
+    struct Trace
+    {
+      /// The cell reached, and the point's reference coordinates there.
+      Triangulation<dim>::active_cell_iterator cell;
+      Point<dim>                               unit_point;
+      /// The target, translated across the periodic faces crossed, or the
+      /// crossing with the boundary face @p cut_face of @p cell.
+      Point<dim> point;
+      unsigned int cut_face = numbers::invalid_unsigned_int;
+      /// False: an artificial cell or the step limit stopped the walk; then
+      /// @p point is the target translated across the periodic faces so far.
+      bool found = false;
+    };
+
+    /// Walk from @p cell, which holds @p from, along the segment to @p to,
+    /// cell to cell across the faces it crosses (exit face from the
+    /// reference coordinates).
+    Trace
+    trace(Triangulation<dim>::active_cell_iterator cell,
+          const Point<dim> &                       from,
+          const Point<dim> &                       to) const;
+
+    /// Locate @p points, each reached along the segment from @p origins in
+    /// its cell of @p hints (see trace()); @p hints become the cells found,
     /// good hints for points near these. Collective.
     void
-    reinit(const std::vector<Point<2>> &                         points,
-           std::vector<Triangulation<2>::active_cell_iterator> &hints);
+    reinit(const std::vector<Point<dim>> &                         origins,
+           const std::vector<Point<dim>> &                         points,
+           std::vector<Triangulation<dim>::active_cell_iterator> &hints);
+
+    /// The points of the last reinit() where they were evaluated: cut at
+    /// the boundary, translated across periodic faces.
+    const std::vector<Point<dim>> &
+    located_points() const;
 
     /// The values of @p evaluate_cell at the points of the last reinit().
     /// Collective; throws if a point lies in no cell of the mesh.
@@ -75,33 +112,28 @@ namespace viscofilm
     n_remote_points() const;
 
   private:
-    /// Walk from @p cell towards @p p across faces: the cell around p (to
-    /// within the tolerance) and p's reference coordinates there, or nothing
-    /// if the walk reaches an artificial cell, the boundary or its step limit.
-    std::optional<std::pair<Triangulation<2>::active_cell_iterator, Point<2>>>
-    walk(Triangulation<2>::active_cell_iterator cell, const Point<2> &p) const;
-
     struct LocalPoint
     {
-      Triangulation<2>::active_cell_iterator cell;
-      Point<2>                               unit_point;
+      Triangulation<dim>::active_cell_iterator cell;
+      Point<dim>                               unit_point;
       unsigned int                           point; // index in reinit()'s points
     };
 
-    const parallel::distributed::Triangulation<2> &triangulation;
+    const parallel::distributed::Triangulation<dim> &triangulation;
     const unsigned int                             max_walk_steps;
     std::vector<LocalPoint>                        local; // sorted by cell
     std::vector<unsigned int>                      remote_points;
     bool                                           any_remote = false; // on any rank
-    Utilities::MPI::RemotePointEvaluation<2>       remote;
+    Utilities::MPI::RemotePointEvaluation<dim>       remote;
     unsigned int                                   n_points = 0;
+    std::vector<Point<dim>>                        located;
   };
 
   /// u and ∇u (u, v, ∂u/∂x, ∂u/∂y, ∂v/∂x, ∂v/∂y) at the points of
   /// @p points, from the velocity part of a (ghosted) Stokes solution.
   std::vector<std::array<double, 6>>
   evaluate_velocity(const PointEvaluator &                    points,
-                    const DoFHandler<2> &                     stokes_dofs,
+                    const DoFHandler<dim> &                     stokes_dofs,
                     const TrilinosWrappers::MPI::BlockVector &stokes_solution);
 
   class DepartureFeet
@@ -124,12 +156,11 @@ namespace viscofilm
     {
       unsigned int max_newton_iterations = 0;
       unsigned int n_left_cell           = 0; // foot outside the cells around x
-      unsigned int n_left_domain         = 0; // foot moved to the boundary
+      unsigned int n_left_domain         = 0; // foot cut at the boundary
     };
 
     DepartureFeet(const Parameters &                             parameters,
-                  const Geometry &                               geometry,
-                  const parallel::distributed::Triangulation<2> &triangulation);
+                  const parallel::distributed::Triangulation<dim> &triangulation);
 
     /**
      * The feet y of the points x: y = x − k u((x + y)/2), the implicit
@@ -137,20 +168,31 @@ namespace viscofilm
      * (∇G = I + (k/2) ∇u) from y = x. @p cells are the cells the points
      * came from: a foot in (or on the boundary of) its point's cell is
      * evaluated there, upwind (and the feet that left them are counted). u is the velocity part
-     * of @p stokes_solution (ghosted) on @p stokes_dofs. A foot outside the
-     * channel is moved to the nearest boundary point. at_feet() then
-     * evaluates fields at the feet. Collective.
+     * of @p stokes_solution (ghosted) on @p stokes_dofs. A characteristic
+     * that leaves the mesh is cut where the segment x–y crosses the
+     * boundary (midpoints too), and wraps round across periodic faces
+     * (PointEvaluator::trace()). at_feet() then evaluates fields at the
+     * feet, inflow_boundaries() says which feet lie on an inflow boundary.
+     * Returns the feet (cut, wrapped into the mesh). Collective.
      */
-    std::vector<Point<2>>
-    compute(const std::vector<Point<2>> &                              points,
-            const std::vector<Triangulation<2>::active_cell_iterator> &cells,
-            const DoFHandler<2> &                                 stokes_dofs,
+    std::vector<Point<dim>>
+    compute(const std::vector<Point<dim>> &                              points,
+            const std::vector<Triangulation<dim>::active_cell_iterator> &cells,
+            const DoFHandler<dim> &                                 stokes_dofs,
             const TrilinosWrappers::MPI::BlockVector &            stokes_solution,
             const double                                          time_step);
 
     /// Located at the feet of the last compute().
     const PointEvaluator &
     at_feet() const;
+
+    /// Per point of the last compute(): the boundary id where its
+    /// characteristic enters the domain (cut on a boundary face with
+    /// u·n < −1e-8 max|u|, max over the points traced), or
+    /// numbers::invalid_boundary_id. A foot cut on a wall by round-off is
+    /// no inflow: it keeps the interior value at the cut.
+    const std::vector<types::boundary_id> &
+    inflow_boundaries() const;
 
     /// Statistics since the last reset_statistics().
     const Statistics &
@@ -162,19 +204,15 @@ namespace viscofilm
   private:
     /// Is @p y in a cell sharing the point @p x of @p cell?
     bool
-    inside_patch(const Triangulation<2>::active_cell_iterator &cell,
-                 const Point<2> &                              x,
-                 const Point<2> &                              y) const;
-
-    /// The nearest point of the channel (the point itself if inside).
-    Point<2>
-    project_into_domain(const Point<2> &p) const;
+    inside_patch(const Triangulation<dim>::active_cell_iterator &cell,
+                 const Point<dim> &                              x,
+                 const Point<dim> &                              y) const;
 
     const Parameters &                             parameters;
-    const Geometry &                               geometry;
-    const parallel::distributed::Triangulation<2> &triangulation;
+    const parallel::distributed::Triangulation<dim> &triangulation;
     PointEvaluator                                 evaluator; // midpoints, then feet
     Statistics                                     accumulated;
+    std::vector<types::boundary_id>                inflow;
   };
 } // namespace viscofilm
 

@@ -77,10 +77,13 @@ namespace viscofilm
     void
     set_initial_conditions(const Function<2> &initial_stress);
 
-    /// MODEL.md §3 step 1: the nodes' departure feet from u^n and c^n there.
+    /// MODEL.md §3 step 1: the nodes' departure feet from u^n and c^n
+    /// there; a foot on an inflow boundary takes that boundary's Stress at
+    /// the cut and @p time (t_n, the time of the other feet's values).
     void
-    trace_back(DepartureFeet &      feet,
+    trace_back(DepartureFeet &     feet,
                const StokesSolver & stokes,
+               const double         time,
                const double         time_step);
 
     /// MODEL.md §3 step 2b: c^{n+1} at every node from the current Stokes
@@ -133,6 +136,11 @@ namespace viscofilm
     /// The shift ηp/(a Wi): τ = c − shift I.
     double
     shift() const;
+
+    /// The conformation c = τ + shift I of the elastic stress @p tau
+    /// (xx, xy, yy as the Stress and Initial stress expressions give it).
+    SymmetricTensor<2, dim>
+    conformation(const Vector<double> &tau) const;
 
     /// Add tau_xx, tau_xy, tau_yy to @p data_out.
     void

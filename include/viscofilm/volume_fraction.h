@@ -177,9 +177,6 @@ namespace viscofilm
     AffineConstraints<double> constraints;
     IndexSet                  locally_relevant_dofs;
 
-    /// Inflow faces (Triangulation face index) and their φ, from
-    /// make_constraints(): a foot on one of them takes that value.
-    std::map<unsigned int, double> inflow_faces;
     /// Range and mass before a mesh change (bounded scheme), restored after.
     std::optional<std::array<double, 3>> before_transfer;
 
