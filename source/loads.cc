@@ -85,16 +85,13 @@ namespace viscofilm
         phi_values.get_function_values(volume_fraction.solution(), phi);
         phi_values.get_function_gradients(volume_fraction.solution(), grad_phi);
         stress_values.get_function_values(stress.solution(), conformation);
-        const double shift = stress.shift();
         for (unsigned int q = 0; q < sigma.size(); ++q)
           {
-            const SymmetricTensor<2, 2> tau({conformation[q][0] - shift,
-                                             conformation[q][2] - shift,
-                                             conformation[q][1]});
             sigma[q] = -pressure[q] * unit_symmetric_tensor<2>() +
                        2 * model.viscosity(phi[q]) * velocity_gradient[q];
             if (model.viscoelastic)
-              sigma[q] += std::clamp(phi[q], 0.0, 1.0) * tau;
+              sigma[q] += model.stress_coupling(phi[q]) *
+                          stress.stress_of(conformation[q], phi[q]);
           }
       }
 
