@@ -31,15 +31,6 @@ namespace viscofilm
     }
 
 
-    /// The prefactor of τ in the total stress and the momentum equation:
-    /// φ clipped to [0, 1] as in η(φ), the thesis mixture (eq. 2.34).
-    double
-    elastic_coupling(const double volume_fraction)
-    {
-      return std::clamp(volume_fraction, 0.0, 1.0);
-    }
-
-
     /// The tangential part of the traction @p force_density on a wall with
     /// outward normal @p normal: in 2D signed along the tangent n rotated by
     /// +90° (along +x on the bottom wall, where it is σ_xy), in 3D its length.
@@ -114,16 +105,13 @@ namespace viscofilm
         phi_values.get_function_values(volume_fraction.solution(), phi);
         phi_values.get_function_gradients(volume_fraction.solution(), grad_phi);
         stress_values.get_function_values(stress.solution(), conformation);
-        const double shift = stress.shift();
         for (unsigned int q = 0; q < sigma.size(); ++q)
           {
-            const SymmetricTensor<2, 2> tau({conformation[q][0] - shift,
-                                             conformation[q][2] - shift,
-                                             conformation[q][1]});
             sigma[q] = -pressure[q] * unit_symmetric_tensor<2>() +
                        2 * model.viscosity(phi[q]) * velocity_gradient[q];
             if (model.viscoelastic)
-              sigma[q] += elastic_coupling(phi[q]) * tau;
+              sigma[q] += model.stress_coupling(phi[q]) *
+                          stress.stress_of(conformation[q], phi[q]);
           }
       }
 

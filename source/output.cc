@@ -274,9 +274,11 @@ namespace viscofilm
         probes_file->set("v", uvp[i][1]);
         probes_file->set("p", uvp[i][2]);
         probes_file->set("volume_fraction", phi[i]);
-        probes_file->set("tau_xx", c[i][0] - stress.shift());
-        probes_file->set("tau_xy", c[i][1]);
-        probes_file->set("tau_yy", c[i][2] - stress.shift());
+        const SymmetricTensor<2, 2> tau =
+          stress.stress_of(Vector<double>(c[i].begin_raw(), c[i].end_raw()), phi[i]);
+        probes_file->set("tau_xx", tau[0][0]);
+        probes_file->set("tau_xy", tau[0][1]);
+        probes_file->set("tau_yy", tau[1][1]);
         probes_file->write_row();
       }
   }

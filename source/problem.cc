@@ -203,7 +203,8 @@ namespace viscofilm
             << " cells, " << stokes.n_dofs() << " Stokes dofs, smallest Δx = "
             << min_cell_size << std::endl;
     parameters.initial_conditions.stress.function().set_time(0);
-    stress.set_initial_conditions(parameters.initial_conditions.stress.function());
+    stress.set_initial_conditions(parameters.initial_conditions.stress.function(),
+                                  volume_fraction);
     stokes.invalidate_matrix();
   }
 
@@ -218,8 +219,9 @@ namespace viscofilm
       &volume_fraction.solution(),
       &parameters.verification.body_force.function(),
       [this](const DoFHandler<2>::active_cell_iterator &cell,
+             const std::vector<double> &                phi,
              std::vector<SymmetricTensor<2, 2>> &       tau) {
-        stress.stress_at_quadrature_points(cell, tau);
+        stress.stress_at_quadrature_points(cell, phi, tau);
       }};
     {
       TimerOutput::Scope t(*computing_timer, "assemble stokes");
@@ -328,7 +330,7 @@ namespace viscofilm
       }
     if (parameters.verification.exact_stress)
       statistics.set("stress_l2_error",
-                     parameters.verification.stress_l2_error(stress, time));
+                     parameters.verification.stress_l2_error(stress, volume_fraction, time));
     if (parameters.verification.exact_volume_fraction)
       statistics.set("volume_fraction_l2_error",
                      parameters.verification.volume_fraction_l2_error(volume_fraction,
@@ -357,7 +359,7 @@ namespace viscofilm
       output.write_snapshot(step, time, [this](DataOut<2> &data_out) {
         stokes.add_output(data_out);
         volume_fraction.add_output(data_out);
-        stress.add_output(data_out);
+        stress.add_output(data_out, volume_fraction);
         loads.add_output(data_out);
       });
   }

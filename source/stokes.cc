@@ -501,9 +501,8 @@ namespace viscofilm
     std::vector<double>                div_phi_u(dofs_per_cell);
     std::vector<double>                phi_p(dofs_per_cell);
 
-    // Res ∂u/∂t by implicit Euler: (Res/k)(u − u^n, v).
-    const double mass_coefficient =
-      model.reynolds_number / coefficients.time_step;
+    // Res ∂u/∂t (ρ ∂u/∂t in SI) by implicit Euler: (Res/k)(u − u^n, v).
+    const double mass_coefficient = model.density / coefficients.time_step;
     coefficients.body_force->set_time(coefficients.time);
 
     for (const auto &cell : dofs.active_cell_iterators())
@@ -530,7 +529,7 @@ namespace viscofilm
           coefficients.body_force->vector_value_list(
             fe_values.get_quadrature_points(), body_force);
           if (coefficients.elastic_stress)
-            coefficients.elastic_stress(cell, tau);
+            coefficients.elastic_stress(cell, volume_fraction, tau);
 
           // With the matrix current, the cell matrix is needed only to move
           // the inhomogeneities of constrained dofs to the right-hand side:
@@ -560,9 +559,9 @@ namespace viscofilm
               const Tensor<1, 2> force({body_force[q][0], body_force[q][1]});
               const Tensor<1, 2> rhs_vector =
                 mass_coefficient * old_velocity[q] + force;
-              // φ τ, with φ clipped to [0, 1] as in η(φ).
+              // s(φ) τ: φ τ in the thesis (eq. 2.34), τ for phases.
               const SymmetricTensor<2, 2> phi_tau =
-                std::clamp(volume_fraction[q], 0.0, 1.0) * tau[q];
+                model.stress_coupling(volume_fraction[q]) * tau[q];
 
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
@@ -656,7 +655,7 @@ namespace viscofilm
   StokesSolver::trace_back(DepartureFeet &feet, const double time_step)
   {
     old_velocity_at_feet.clear();
-    if (model.reynolds_number == 0)
+    if (model.density == 0)
       return;
     FEValues<2> fe_values(fe, quadrature(), update_quadrature_points);
     std::vector<Point<2>>                               points;

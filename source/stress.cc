@@ -29,23 +29,44 @@ namespace viscofilm
       return mean - std::sqrt(half * half + xy * xy);
     }
 
-    /// τ = c − shift I as output fields.
+    /// τ = Model::stress(c, φ) as output fields; φ is evaluated at the
+    /// output points only where τ depends on it (Rheology = phases).
     class StressPostprocessor : public DataPostprocessor<2>
     {
     public:
-      explicit StressPostprocessor(const double shift)
-        : shift(shift)
+      StressPostprocessor(const ElasticStress &stress, const VolumeFraction &volume_fraction)
+        : stress(stress)
+        , volume_fraction(volume_fraction)
       {}
 
       void
       evaluate_vector_field(const DataPostprocessorInputs::Vector<2> &inputs,
                             std::vector<Vector<double>> &computed) const override
       {
-        for (unsigned int q = 0; q < inputs.solution_values.size(); ++q)
+        const unsigned int  n = inputs.solution_values.size();
+        std::vector<double> phi(n, 0.0);
+        if (stress.stress_depends_on_volume_fraction())
           {
-            computed[q][0] = inputs.solution_values[q][0] - shift;
-            computed[q][1] = inputs.solution_values[q][1];
-            computed[q][2] = inputs.solution_values[q][2] - shift;
+            const auto cell = inputs.template get_cell<2>();
+            std::vector<Point<2>> unit_points(n);
+            for (unsigned int q = 0; q < n; ++q)
+              unit_points[q] = StaticMappingQ1<2>::mapping.transform_real_to_unit_cell(
+                cell, inputs.evaluation_points[q]);
+            FEValues<2> phi_values(volume_fraction.dof_handler().get_fe(),
+                                   Quadrature<2>(unit_points),
+                                   update_values);
+            phi_values.reinit(DoFHandler<2>::active_cell_iterator(
+              &cell->get_triangulation(), cell->level(), cell->index(),
+              &volume_fraction.dof_handler()));
+            phi_values.get_function_values(volume_fraction.solution(), phi);
+          }
+        for (unsigned int q = 0; q < n; ++q)
+          {
+            const SymmetricTensor<2, 2> tau =
+              stress.stress_of(inputs.solution_values[q], phi[q]);
+            computed[q][0] = tau[0][0];
+            computed[q][1] = tau[0][1];
+            computed[q][2] = tau[1][1];
           }
       }
 
@@ -58,11 +79,12 @@ namespace viscofilm
       UpdateFlags
       get_needed_update_flags() const override
       {
-        return update_values;
+        return update_values | update_quadrature_points;
       }
 
     private:
-      const double shift;
+      const ElasticStress & stress;
+      const VolumeFraction &volume_fraction;
     };
   } // namespace
 
@@ -138,10 +160,20 @@ namespace viscofilm
   {}
 
 
-  double
-  ElasticStress::shift() const
+  SymmetricTensor<2, 2>
+  ElasticStress::stress_of(const Vector<double> &conformation,
+                           const double          volume_fraction) const
   {
-    return model.viscosity_ratio / (model.slip_parameter * model.weissenberg);
+    return model.stress(SymmetricTensor<2, 2>(
+                          {conformation[0], conformation[2], conformation[1]}),
+                        volume_fraction);
+  }
+
+
+  bool
+  ElasticStress::stress_depends_on_volume_fraction() const
+  {
+    return model.rheology == Model::Rheology::phases;
   }
 
 
@@ -193,20 +225,22 @@ namespace viscofilm
         }
 
     quadrature_values = std::make_unique<FEValues<2>>(fe, quadrature, update_values);
-    tau_postprocessor = std::make_unique<StressPostprocessor>(shift());
   }
 
 
   void
-  ElasticStress::set_initial_conditions(const Function<2> &initial_stress)
+  ElasticStress::set_initial_conditions(const Function<2> &    initial_stress,
+                                        const VolumeFraction &volume_fraction)
   {
+    const std::vector<double> phi = nodal_volume_fraction(volume_fraction);
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
                                               triangulation.get_communicator());
     // Without elastic stress τ ≡ 0 (c = shift I) whatever the input says:
     // nothing updates c then, so a non-zero τ0 would act on the flow for ever.
     Vector<double> tau(3);
-    for (const Node &node : nodes)
+    for (unsigned int i = 0; i < nodes.size(); ++i)
       {
+        const Node &node = nodes[i];
         // A discontinuous c takes its own cell's limit of τ0 on the cell's
         // boundary, so that a τ0 jumping across a face is kept.
         const Point<2> inside =
@@ -215,7 +249,7 @@ namespace viscofilm
             node.position;
         if (model.viscoelastic)
           initial_stress.vector_value(inside, tau);
-        const SymmetricTensor<2, dim> c = conformation(tau);
+        const SymmetricTensor<2, dim> c = conformation(tau, phi[i]);
         distributed[node.dofs[0]]       = c[0][0];
         distributed[node.dofs[1]]       = c[0][1];
         distributed[node.dofs[2]]       = c[1][1];
@@ -229,10 +263,10 @@ namespace viscofilm
 
 
   SymmetricTensor<2, dim>
-  ElasticStress::conformation(const Vector<double> &tau) const
+  ElasticStress::conformation(const Vector<double> &tau, const double phi) const
   {
     AssertDimension(tau.size(), n_symmetric_components);
-    return SymmetricTensor<2, dim>({tau[0] + shift(), tau[2] + shift(), tau[1]});
+    return model.conformation(SymmetricTensor<2, dim>({tau[0], tau[2], tau[1]}), phi);
   }
 
 
@@ -254,7 +288,7 @@ namespace viscofilm
     // c^n at the feet, on whichever rank owns them.
     const MPI_Comm     comm      = triangulation.get_communicator();
     const double       this_rank = Utilities::MPI::this_mpi_process(comm);
-    const bool         guard     = parameters.positivity_safe_feet && shift() > 0;
+    const bool         guard     = parameters.positivity_safe_feet && model.relaxed_conformation() > 0;
     unsigned int       fixes     = 0;
     FEPointEvaluation<3, 2> conformation(StaticMappingQ1<2>::mapping, fe, update_values, 0);
     std::vector<double>     cell_values(fe.n_dofs_per_cell());
@@ -307,11 +341,13 @@ namespace viscofilm
         if (inflow[i] != numbers::invalid_boundary_id)
           {
             // The characteristic enters through boundary inflow[i]: its
-            // Stress at the cut, at t_n like c^n at the other feet.
+            // Stress at the cut, at t_n like c^n at the other feet, and its
+            // volume fraction there.
             FunctionParser<dim> &stress = boundary_conditions.boundary(inflow[i]).stress.function();
             stress.set_time(time);
             stress.vector_value(at_feet[i], tau);
-            nodes[i].foot_conformation = ElasticStress::conformation(tau);
+            nodes[i].foot_conformation = ElasticStress::conformation(
+              tau, boundary_conditions.boundary(inflow[i]).volume_fraction);
           }
         else
           nodes[i].foot_conformation =
@@ -324,49 +360,78 @@ namespace viscofilm
   }
 
 
+  template <typename CellFunction>
   void
-  ElasticStress::nodal_fields(const StokesSolver &        stokes,
-                              const VolumeFraction &      volume_fraction,
-                              std::vector<Tensor<2, 2>> & velocity_gradient,
-                              std::vector<double> &       phi) const
+  ElasticStress::for_each_node_on_cells(const CellFunction &on_cell) const
   {
+    // Ghost cells too: a continuous node on a rank boundary sees all of its
+    // cells.
     const Quadrature<2> at_nodes(fe.base_element(0).get_unit_support_points());
-    FEValues<2> stokes_values(stokes.dof_handler().get_fe(), at_nodes, update_gradients);
-    FEValues<2> phi_values(volume_fraction.dof_handler().get_fe(), at_nodes, update_values);
-    const FEValuesExtractors::Vector velocities(0);
-    std::vector<Tensor<2, 2>>        gradients(at_nodes.size());
-    std::vector<double>              phis(at_nodes.size());
-    std::vector<unsigned int>        n_cells(nodes.size(), 0);
     std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
-    const IndexSet &                 owned = dofs.locally_owned_dofs();
-
-    velocity_gradient.assign(nodes.size(), Tensor<2, 2>());
-    phi.assign(nodes.size(), 0.0);
-    // Ghost cells too: a continuous node on a rank boundary averages over all
-    // of its cells.
+    std::vector<unsigned int>            node_of_support(at_nodes.size());
+    const IndexSet &                     owned = dofs.locally_owned_dofs();
     for (const auto &cell : dofs.active_cell_iterators())
       if (!cell->is_artificial())
         {
-          stokes_values.reinit(DoFHandler<2>::active_cell_iterator(
-            &triangulation, cell->level(), cell->index(), &stokes.dof_handler()));
-          stokes_values[velocities].get_function_gradients(stokes.solution(), gradients);
-          phi_values.reinit(DoFHandler<2>::active_cell_iterator(
-            &triangulation, cell->level(), cell->index(), &volume_fraction.dof_handler()));
-          phi_values.get_function_values(volume_fraction.solution(), phis);
           cell->get_dof_indices(cell_dofs);
           for (unsigned int k = 0; k < at_nodes.size(); ++k)
             {
-              const auto dof = cell_dofs[fe.component_to_system_index(0, k)];
-              if (!owned.is_element(dof))
-                continue;
-              const unsigned int i = node_of_owned_dof[owned.index_within_set(dof)];
-              velocity_gradient[i] += gradients[k];
-              phi[i] = phis[k];
-              ++n_cells[i];
+              const auto dof     = cell_dofs[fe.component_to_system_index(0, k)];
+              node_of_support[k] = owned.is_element(dof) ?
+                                     node_of_owned_dof[owned.index_within_set(dof)] :
+                                     numbers::invalid_unsigned_int;
             }
+          on_cell(cell, at_nodes, node_of_support);
         }
+  }
+
+
+  std::vector<Tensor<2, 2>>
+  ElasticStress::nodal_velocity_gradient(const StokesSolver &stokes) const
+  {
+    const Quadrature<2> at_nodes(fe.base_element(0).get_unit_support_points());
+    FEValues<2> stokes_values(stokes.dof_handler().get_fe(), at_nodes, update_gradients);
+    const FEValuesExtractors::Vector velocities(0);
+    std::vector<Tensor<2, 2>>        gradients(at_nodes.size());
+    std::vector<Tensor<2, 2>>        velocity_gradient(nodes.size());
+    std::vector<unsigned int>        n_cells(nodes.size(), 0);
+    for_each_node_on_cells([&](const DoFHandler<2>::active_cell_iterator &cell,
+                               const Quadrature<2> &,
+                               const std::vector<unsigned int> &node_of_support) {
+      stokes_values.reinit(DoFHandler<2>::active_cell_iterator(
+        &triangulation, cell->level(), cell->index(), &stokes.dof_handler()));
+      stokes_values[velocities].get_function_gradients(stokes.solution(), gradients);
+      for (unsigned int k = 0; k < gradients.size(); ++k)
+        if (node_of_support[k] != numbers::invalid_unsigned_int)
+          {
+            velocity_gradient[node_of_support[k]] += gradients[k];
+            ++n_cells[node_of_support[k]];
+          }
+    });
     for (unsigned int i = 0; i < nodes.size(); ++i)
       velocity_gradient[i] /= n_cells[i];
+    return velocity_gradient;
+  }
+
+
+  std::vector<double>
+  ElasticStress::nodal_volume_fraction(const VolumeFraction &volume_fraction) const
+  {
+    const Quadrature<2> at_nodes(fe.base_element(0).get_unit_support_points());
+    FEValues<2> phi_values(volume_fraction.dof_handler().get_fe(), at_nodes, update_values);
+    std::vector<double> phis(at_nodes.size());
+    std::vector<double> phi(nodes.size(), 0.0);
+    for_each_node_on_cells([&](const DoFHandler<2>::active_cell_iterator &cell,
+                               const Quadrature<2> &,
+                               const std::vector<unsigned int> &node_of_support) {
+      phi_values.reinit(DoFHandler<2>::active_cell_iterator(
+        &triangulation, cell->level(), cell->index(), &volume_fraction.dof_handler()));
+      phi_values.get_function_values(volume_fraction.solution(), phis);
+      for (unsigned int k = 0; k < phis.size(); ++k)
+        if (node_of_support[k] != numbers::invalid_unsigned_int)
+          phi[node_of_support[k]] = phis[k];
+    });
+    return phi;
   }
 
 
@@ -375,13 +440,10 @@ namespace viscofilm
                         const VolumeFraction &volume_fraction,
                         const double          time_step)
   {
-    std::vector<Tensor<2, 2>> velocity_gradient;
-    std::vector<double>       phi;
-    nodal_fields(stokes, volume_fraction, velocity_gradient, phi);
+    const std::vector<Tensor<2, 2>> velocity_gradient = nodal_velocity_gradient(stokes);
+    const std::vector<double>       phi = nodal_volume_fraction(volume_fraction);
 
     const double a     = model.slip_parameter;
-    const double alpha = 1.0 / model.weissenberg;       // eq. 2.40
-    const double beta  = shift() / model.weissenberg;   // ηp/(a Wi²)
     const double k     = time_step;
     const Tensor<2, 2> identity = unit_symmetric_tensor<2>();
 
@@ -397,12 +459,12 @@ namespace viscofilm
           parameters.cayley ?
             invert(identity - 0.5 * k * Phi) * (identity + 0.5 * k * Phi) :
             invert(identity - k * Phi);
-        // Q2 interpolation of a step overshoots below 0: clip φ as in η(φ).
-        const double        f   = std::clamp(phi[i], 0.0, 1.0);
-        const Tensor<2, 2>  c_foot(nodes[i].foot_conformation);
-        // c^{n+1} = (φ E c(y) Eᵀ + kβ I) / (φ + kα)   (eq. 3.44)
-        const SymmetricTensor<2, 2> c = symmetrize(
-          (f * E * c_foot * transpose(E) + k * beta * identity) / (f + k * alpha));
+        const Model::Relaxation r = model.relaxation(phi[i]);
+        const Tensor<2, 2>      c_foot(nodes[i].foot_conformation);
+        // c^{n+1} = (w E c(y) Eᵀ + kβ I) / (w + kα)   (thesis: w = φ, eq. 3.44)
+        const SymmetricTensor<2, 2> c =
+          symmetrize((r.weight * E * c_foot * transpose(E) + k * r.beta * identity) /
+                     (r.weight + k * r.alpha));
         distributed[nodes[i].dofs[0]] = c[0][0];
         distributed[nodes[i].dofs[1]] = c[0][1];
         distributed[nodes[i].dofs[2]] = c[1][1];
@@ -414,18 +476,24 @@ namespace viscofilm
     constraint_repairs = repair_positivity(distributed);
     const TrilinosWrappers::MPI::Vector previous = current;
     current                                      = distributed;
-    return relative_change(previous);
+    return relative_change(previous, volume_fraction);
   }
 
 
   double
-  ElasticStress::relative_change(const TrilinosWrappers::MPI::Vector &previous) const
+  ElasticStress::relative_change(const TrilinosWrappers::MPI::Vector &previous,
+                                 const VolumeFraction &volume_fraction) const
   {
-    // ‖Δτ‖_L2 / ‖τ‖_L2 with the Frobenius norm; Δτ = Δc, but τ's own size,
-    // not c's (which includes the relaxed state shift·I), is the scale.
+    // ‖Δτ‖_L2 / ‖τ‖_L2 with the Frobenius norm; Δτ = G Δc, but τ's own size,
+    // not c's (which includes the relaxed state), is the scale.
     FEValues<2> fe_values(fe, stokes_quadrature, update_values | update_JxW_values);
+    FEValues<2> phi_values(volume_fraction.dof_handler().get_fe(),
+                           stokes_quadrature,
+                           update_values);
     std::vector<Vector<double>> now(stokes_quadrature.size(), Vector<double>(3));
     std::vector<Vector<double>> before(stokes_quadrature.size(), Vector<double>(3));
+    std::vector<double>         phi(stokes_quadrature.size());
+    const double                rest = model.relaxed_conformation();
     const auto frobenius_square = [](const double xx, const double xy, const double yy) {
       return xx * xx + 2 * xy * xy + yy * yy;
     };
@@ -436,15 +504,20 @@ namespace viscofilm
           fe_values.reinit(cell);
           fe_values.get_function_values(current, now);
           fe_values.get_function_values(previous, before);
+          phi_values.reinit(DoFHandler<2>::active_cell_iterator(
+            &triangulation, cell->level(), cell->index(), &volume_fraction.dof_handler()));
+          phi_values.get_function_values(volume_fraction.solution(), phi);
           for (unsigned int q = 0; q < now.size(); ++q)
             {
-              squares[0] += frobenius_square(now[q][0] - before[q][0],
-                                             now[q][1] - before[q][1],
-                                             now[q][2] - before[q][2]) *
+              const double G = model.stress_modulus(phi[q]);
+              squares[0] += frobenius_square(G * (now[q][0] - before[q][0]),
+                                             G * (now[q][1] - before[q][1]),
+                                             G * (now[q][2] - before[q][2])) *
                             fe_values.JxW(q);
-              squares[1] +=
-                frobenius_square(now[q][0] - shift(), now[q][1], now[q][2] - shift()) *
-                fe_values.JxW(q);
+              squares[1] += frobenius_square(G * (now[q][0] - rest),
+                                             G * now[q][1],
+                                             G * (now[q][2] - rest)) *
+                            fe_values.JxW(q);
             }
         }
     Utilities::MPI::sum(squares, triangulation.get_communicator(), squares);
@@ -459,9 +532,9 @@ namespace viscofilm
     // cells) are weighted sums with a weight −1/8, not convex ones; raise
     // their smallest eigenvalue to the floor, keeping the eigenvectors.
     unsigned int repairs = 0;
-    if (shift() > 0)
+    if (model.relaxed_conformation() > 0)
       {
-        const double floor = parameters.positivity_floor * shift();
+        const double floor = parameters.positivity_floor * model.relaxed_conformation();
         for (const Node &node : nodes)
           {
             const double smallest = smallest_eigenvalue(distributed[node.dofs[0]],
@@ -485,6 +558,7 @@ namespace viscofilm
   void
   ElasticStress::stress_at_quadrature_points(
     const DoFHandler<2>::active_cell_iterator &cell,
+    const std::vector<double> &                volume_fraction,
     std::vector<SymmetricTensor<2, 2>> &       tau) const
   {
     quadrature_values->reinit(DoFHandler<2>::active_cell_iterator(
@@ -492,7 +566,7 @@ namespace viscofilm
     std::vector<Vector<double>> c(tau.size(), Vector<double>(3));
     quadrature_values->get_function_values(current, c);
     for (unsigned int q = 0; q < tau.size(); ++q)
-      tau[q] = SymmetricTensor<2, 2>({c[q][0] - shift(), c[q][2] - shift(), c[q][1]});
+      tau[q] = stress_of(c[q], volume_fraction[q]);
   }
 
 
@@ -573,8 +647,9 @@ namespace viscofilm
 
 
   void
-  ElasticStress::add_output(DataOut<2> &data_out) const
+  ElasticStress::add_output(DataOut<2> &data_out, const VolumeFraction &volume_fraction)
   {
+    tau_postprocessor = std::make_unique<StressPostprocessor>(*this, volume_fraction);
     data_out.add_data_vector(dofs, current, *tau_postprocessor);
   }
 

@@ -147,14 +147,43 @@ namespace viscofilm
 
 
   double
-  Verification::stress_l2_error(const ElasticStress &stress, const double time) const
+  Verification::stress_l2_error(const ElasticStress & stress,
+                                const VolumeFraction &volume_fraction,
+                                const double          time) const
   {
-    // The field is c = τ + shift I.
-    return field_l2_error(stress.dof_handler(),
-                          stress.solution(),
-                          exact_stress->function(),
-                          time,
-                          {stress.shift(), 0.0, stress.shift()});
+    FunctionParser<2> &exact = exact_stress->function();
+    exact.set_time(time);
+    const DoFHandler<2> &dof_handler = stress.dof_handler();
+    const QGauss<2>      quadrature(dof_handler.get_fe().degree + 2);
+    FEValues<2>          fe_values(dof_handler.get_fe(),
+                          quadrature,
+                          update_values | update_quadrature_points | update_JxW_values);
+    FEValues<2> phi_values(volume_fraction.dof_handler().get_fe(), quadrature, update_values);
+    std::vector<Vector<double>> conformation(quadrature.size(), Vector<double>(3));
+    std::vector<Vector<double>> reference(quadrature.size(), Vector<double>(3));
+    std::vector<double>         phi(quadrature.size());
+    double                      sum = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(stress.solution(), conformation);
+          phi_values.reinit(DoFHandler<2>::active_cell_iterator(&cell->get_triangulation(),
+                                                                cell->level(),
+                                                                cell->index(),
+                                                                &volume_fraction.dof_handler()));
+          phi_values.get_function_values(volume_fraction.solution(), phi);
+          exact.vector_value_list(fe_values.get_quadrature_points(), reference);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const SymmetricTensor<2, 2> tau = stress.stress_of(conformation[q], phi[q]);
+              sum += (std::pow(tau[0][0] - reference[q][0], 2) +
+                      std::pow(tau[0][1] - reference[q][1], 2) +
+                      std::pow(tau[1][1] - reference[q][2], 2)) *
+                     fe_values.JxW(q);
+            }
+        }
+    return std::sqrt(Utilities::MPI::sum(sum, dof_handler.get_communicator()));
   }
 
 

@@ -86,10 +86,12 @@ namespace viscofilm
       unsigned int schur_inner_iterations    = 200;
     };
 
-    /// τ at the quadrature points of a cell, for the elastic stress term
-    /// −(φτ, ∇v) on the right-hand side. An empty hook means τ = 0.
+    /// τ at the quadrature points of a cell given φ there, for the elastic
+    /// stress term −(s(φ) τ, ∇v) on the right-hand side. An empty hook
+    /// means τ = 0.
     using ElasticStress = std::function<void(
       const DoFHandler<2>::active_cell_iterator &cell,
+      const std::vector<double> &                volume_fraction,
       std::vector<SymmetricTensor<2, 2>> &       tau)>;
 
     /// What the momentum equation needs besides the unknowns.

@@ -1,4 +1,4 @@
-// The elastic stress: conformation tensor c = τ + (ηp/(a Wi)) I on its own
+// The elastic stress: conformation tensor c (τ = Model::stress(c, φ)) on its own
 // DoFHandler, updated node by node by the symmetric matrix Riccati scheme
 // along departure feet (MODEL.md §2-3, thesis eq. 2.39-2.40, 3.39-3.44).
 #ifndef viscofilm_stress_h
@@ -72,10 +72,11 @@ namespace viscofilm
     void
     setup_dofs(const Quadrature<2> &quadrature);
 
-    /// c = τ0 + (ηp/(a Wi)) I at the nodes (τ0 = 0 in the thesis; always
-    /// 0 without Model/Viscoelastic).
+    /// c = Model::conformation(τ0, φ) at the nodes (τ0 = 0 in the thesis;
+    /// always 0 without Model/Viscoelastic).
     void
-    set_initial_conditions(const Function<2> &initial_stress);
+    set_initial_conditions(const Function<2> &    initial_stress,
+                           const VolumeFraction &volume_fraction);
 
     /// MODEL.md §3 step 1: the nodes' departure feet from u^n and c^n
     /// there; a foot on an inflow boundary takes that boundary's Stress at
@@ -93,10 +94,21 @@ namespace viscofilm
     double
     update(const StokesSolver &stokes, const VolumeFraction &volume_fraction, const double time_step);
 
-    /// τ at the quadrature points of @p cell (the Stokes right-hand side).
+    /// τ at the quadrature points of @p cell (the Stokes right-hand side),
+    /// given φ there; the flow sees Model::stress_coupling(φ) τ.
     void
     stress_at_quadrature_points(const DoFHandler<2>::active_cell_iterator &cell,
+                                const std::vector<double> &volume_fraction,
                                 std::vector<SymmetricTensor<2, 2>> &tau) const;
+
+    /// τ of the conformation (c_xx, c_xy, c_yy) at a point where the volume
+    /// fraction is @p volume_fraction (Model::stress).
+    SymmetricTensor<2, 2>
+    stress_of(const Vector<double> &conformation, const double volume_fraction) const;
+
+    /// Whether τ depends on φ beyond c (Rheology = phases).
+    bool
+    stress_depends_on_volume_fraction() const;
 
     /// Keep c across a mesh change (see StokesSolver).
     void
@@ -133,18 +145,14 @@ namespace viscofilm
     unsigned int
     n_remote_feet() const;
 
-    /// The shift ηp/(a Wi): τ = c − shift I.
-    double
-    shift() const;
-
-    /// The conformation c = τ + shift I of the elastic stress @p tau
-    /// (xx, xy, yy as the Stress and Initial stress expressions give it).
+    /// The conformation of the elastic stress @p tau (xx, xy, yy as the
+    /// Stress expressions give it) at volume fraction @p phi (Model).
     SymmetricTensor<2, dim>
-    conformation(const Vector<double> &tau) const;
+    conformation(const Vector<double> &tau, const double phi) const;
 
-    /// Add tau_xx, tau_xy, tau_yy to @p data_out.
+    /// Add tau_xx, tau_xy, tau_yy to @p data_out (τ needs φ with phases).
     void
-    add_output(DataOut<2> &data_out) const;
+    add_output(DataOut<2> &data_out, const VolumeFraction &volume_fraction);
 
     const DoFHandler<2> &
     dof_handler() const;
@@ -162,9 +170,10 @@ namespace viscofilm
       SymmetricTensor<2, 2>                   foot_conformation;
     };
 
-    /// ‖c − @p previous‖_L2 / ‖τ‖_L2 (Frobenius norms) for the current c.
+    /// ‖τ − τ(@p previous)‖_L2 / ‖τ‖_L2 (Frobenius norms) for the current c.
     double
-    relative_change(const TrilinosWrappers::MPI::Vector &previous) const;
+    relative_change(const TrilinosWrappers::MPI::Vector &previous,
+                    const VolumeFraction &               volume_fraction) const;
 
     /// Raise the smallest eigenvalue of c to Stress/Positivity floor at the
     /// nodes of @p distributed below it (after Q2 interpolation); returns
@@ -172,12 +181,19 @@ namespace viscofilm
     unsigned int
     repair_positivity(TrilinosWrappers::MPI::Vector &distributed) const;
 
-    /// ∇u and φ at every node, ∇u averaged over the node's cells.
+    /// Call @p on_cell(cell, support points, node of each support point or
+    /// invalid) for every cell that holds owned nodes, ghost cells included.
+    template <typename CellFunction>
     void
-    nodal_fields(const StokesSolver &           stokes,
-                 const VolumeFraction &         volume_fraction,
-                 std::vector<Tensor<2, 2>> &    velocity_gradient,
-                 std::vector<double> &          phi) const;
+    for_each_node_on_cells(const CellFunction &on_cell) const;
+
+    /// ∇u at every node, averaged over the node's cells.
+    std::vector<Tensor<2, 2>>
+    nodal_velocity_gradient(const StokesSolver &stokes) const;
+
+    /// φ at every node.
+    std::vector<double>
+    nodal_volume_fraction(const VolumeFraction &volume_fraction) const;
 
     const parallel::distributed::Triangulation<2> &triangulation;
     const Parameters &                             parameters;

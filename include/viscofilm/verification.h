@@ -38,9 +38,11 @@ namespace viscofilm
               const double              time,
               const bool                pressure_up_to_constant) const;
 
-    /// L2 error of τ against the exact stress at @p time.
+    /// L2 error of τ (from c and φ) against the exact stress at @p time.
     double
-    stress_l2_error(const ElasticStress &stress, const double time) const;
+    stress_l2_error(const ElasticStress & stress,
+                    const VolumeFraction &volume_fraction,
+                    const double          time) const;
 
     /// L2 error of φ against the exact volume fraction at @p time.
     double
