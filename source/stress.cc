@@ -160,11 +160,11 @@ namespace viscofilm
   {}
 
 
-  SymmetricTensor<2, 2>
+  SymmetricTensor<2, dim>
   ElasticStress::stress_of(const Vector<double> &conformation,
                            const double          volume_fraction) const
   {
-    return model.stress(SymmetricTensor<2, 2>(
+    return model.stress(SymmetricTensor<2, dim>(
                           {conformation[0], conformation[2], conformation[1]}),
                         volume_fraction);
   }
@@ -386,7 +386,7 @@ namespace viscofilm
   }
 
 
-  std::vector<Tensor<2, 2>>
+  std::vector<Tensor<2, dim>>
   ElasticStress::nodal_velocity_gradient(const StokesSolver &stokes) const
   {
     const Quadrature<2> at_nodes(fe.base_element(0).get_unit_support_points());

@@ -23,6 +23,7 @@
 
 #include <viscofilm/boundary_conditions.h>
 #include <viscofilm/departure_feet.h>
+#include <viscofilm/dimension.h>
 #include <viscofilm/mesh_refinement.h>
 #include <viscofilm/model.h>
 
@@ -103,7 +104,7 @@ namespace viscofilm
 
     /// τ of the conformation (c_xx, c_xy, c_yy) at a point where the volume
     /// fraction is @p volume_fraction (Model::stress).
-    SymmetricTensor<2, 2>
+    SymmetricTensor<2, dim>
     stress_of(const Vector<double> &conformation, const double volume_fraction) const;
 
     /// Whether τ depends on φ beyond c (Rheology = phases).
@@ -188,7 +189,7 @@ namespace viscofilm
     for_each_node_on_cells(const CellFunction &on_cell) const;
 
     /// ∇u at every node, averaged over the node's cells.
-    std::vector<Tensor<2, 2>>
+    std::vector<Tensor<2, dim>>
     nodal_velocity_gradient(const StokesSolver &stokes) const;
 
     /// φ at every node.
