@@ -401,132 +401,149 @@ namespace viscofilm
   std::vector<Tensor<1, dim>>
   BiofilmLoads::boundary_forces() const
   {
+    if (parameters.force_boundaries.empty())
+      return {};
+    std::vector<Tensor<1, dim>> forces =
+      (parameters.force_method == Parameters::ForceMethod::surface_integral ?
+         surface_integral_forces() :
+         consistent_forces());
+    for (Tensor<1, dim> &force : forces)
+      force = Utilities::MPI::sum(force, stokes.dof_handler().get_communicator());
+    return forces;
+  }
+
+
+  std::vector<Tensor<1, dim>>
+  BiofilmLoads::surface_integral_forces() const
+  {
     const std::vector<Parameters::NamedBoundary> &boundaries =
       parameters.force_boundaries;
     std::vector<Tensor<1, dim>> forces(boundaries.size());
-    if (boundaries.empty())
-      return forces;
     const DoFHandler<dim> &dofs = stokes.dof_handler();
     const auto &           fe   = dofs.get_fe();
 
-    if (parameters.force_method == Parameters::ForceMethod::surface_integral)
-      {
-        const QGauss<dim - 1>            quadrature(fe.degree + 1);
-        TotalStress<FEFaceValues<dim>>   face_stress(
-          quadrature, model, stokes, volume_fraction, stress, update_normal_vectors);
-        for (const auto &cell : dofs.active_cell_iterators())
-          if (cell->is_locally_owned())
-            for (const unsigned int f : cell->face_indices())
-              if (cell->face(f)->at_boundary())
-                for (unsigned int b = 0; b < boundaries.size(); ++b)
-                  if (cell->face(f)->boundary_id() == boundaries[b].id)
-                    {
-                      face_stress.reinit(cell, f);
-                      const auto &normals =
-                        face_stress.stokes_fe_values().get_normal_vectors();
-                      for (unsigned int q = 0; q < quadrature.size(); ++q)
-                        forces[b] -= face_stress.sigma[q] * normals[q] * face_stress.JxW(q);
-                    }
-      }
-    else
-      {
-        // F·e = −R(v) = −∫_Ω σ : ∇v for v = e at the boundary's velocity
-        // nodes and 0 at all others: the momentum equation's weak form
-        // integrated by parts, ∫_Ω σ : ∇v = ∫_∂Ω σn · v, evaluated with the
-        // assembly's quadrature, so that for a discrete solution it is the
-        // reaction of the constrained equations. v must be a finite element
-        // function: hanging nodes take the values of the nodes they hang on.
-        // Where the boundary meets another one (a channel's corners), v
-        // reaches onto the other's first faces; their part ∫ σn · v there is
-        // taken off with the face values (zero on a closed boundary such as
-        // a cylinder), else the force would pick up an O(h) share of the
-        // neighbour's traction.
-        IndexSet relevant;
-        DoFTools::extract_locally_relevant_dofs(dofs, relevant);
-        AffineConstraints<double> hanging(relevant);
-        DoFTools::make_hanging_node_constraints(dofs, hanging);
-        hanging.close();
-        const ComponentMask velocity = fe.component_mask(FEValuesExtractors::Vector(0));
-
-        std::vector<IndexSet> on_boundary;
-        for (const auto &boundary : boundaries)
-          on_boundary.push_back(
-            DoFTools::extract_boundary_dofs(dofs, velocity, {boundary.id}));
-        // v's nodal value at dof i for boundary b.
-        const auto value = [&](const unsigned int b, const types::global_dof_index i) {
-          if (!hanging.is_constrained(i))
-            return on_boundary[b].is_element(i) ? 1.0 : 0.0;
-          double sum = 0;
-          for (const auto &[j, weight] : *hanging.get_constraint_entries(i))
-            sum += (on_boundary[b].is_element(j) ? weight : 0.0);
-          return sum;
-        };
-
-        TotalStress<FEValues<dim>> cell_stress(
-          stokes.quadrature(), model, stokes, volume_fraction, stress);
-        const QGauss<dim - 1>          face_quadrature(fe.degree + 1);
-        TotalStress<FEFaceValues<dim>> face_stress(
-          face_quadrature, model, stokes, volume_fraction, stress, update_normal_vectors);
-        const FEValuesExtractors::Vector     velocities(0);
-        std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
-        std::vector<double>                  v(fe.n_dofs_per_cell());
-        for (const auto &cell : dofs.active_cell_iterators())
-          if (cell->is_locally_owned())
-            {
-              cell->get_dof_indices(local_dofs);
-              bool reinitialized = false;
-              for (unsigned int b = 0; b < boundaries.size(); ++b)
+    const QGauss<dim - 1>          quadrature(fe.degree + 1);
+    TotalStress<FEFaceValues<dim>> face_stress(
+      quadrature, model, stokes, volume_fraction, stress, update_normal_vectors);
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            for (unsigned int b = 0; b < boundaries.size(); ++b)
+              if (cell->face(f)->boundary_id() == boundaries[b].id)
                 {
-                  bool touches = false;
-                  for (unsigned int i = 0; i < local_dofs.size(); ++i)
-                    {
-                      v[i]    = (velocity[fe.system_to_component_index(i).first] ?
-                                   value(b, local_dofs[i]) :
-                                   0.0);
-                      touches = touches || v[i] != 0;
-                    }
-                  if (!touches)
-                    continue;
-                  if (!reinitialized)
-                    cell_stress.reinit(cell);
-                  reinitialized = true;
-                  const auto &values = cell_stress.stokes_fe_values();
-                  for (unsigned int i = 0; i < local_dofs.size(); ++i)
-                    if (v[i] != 0)
-                      {
-                        const unsigned int d = fe.system_to_component_index(i).first;
-                        for (unsigned int q = 0; q < values.n_quadrature_points; ++q)
-                          forces[b][d] -= v[i] *
-                                          scalar_product(cell_stress.sigma[q],
-                                                         values[velocities].gradient(i, q)) *
-                                          values.JxW(q);
-                      }
-
-                  for (const unsigned int f : cell->face_indices())
-                    if (cell->face(f)->at_boundary() &&
-                        cell->face(f)->boundary_id() != boundaries[b].id)
-                      {
-                        face_stress.reinit(cell, f);
-                        const auto &face_values = face_stress.stokes_fe_values();
-                        for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                          {
-                            Tensor<1, dim> v_q;
-                            for (unsigned int i = 0; i < local_dofs.size(); ++i)
-                              if (v[i] != 0)
-                                v_q += v[i] * face_values[velocities].value(i, q);
-                            // v_q[d] is the weight of the component d.
-                            const Tensor<1, dim> traction =
-                              face_stress.sigma[q] * face_values.normal_vector(q);
-                            for (unsigned int d = 0; d < dim; ++d)
-                              forces[b][d] += traction[d] * v_q[d] * face_values.JxW(q);
-                          }
-                      }
+                  face_stress.reinit(cell, f);
+                  const auto &normals =
+                    face_stress.stokes_fe_values().get_normal_vectors();
+                  for (unsigned int q = 0; q < quadrature.size(); ++q)
+                    forces[b] -= face_stress.sigma[q] * normals[q] * face_stress.JxW(q);
                 }
-            }
-      }
+    return forces;
+  }
 
-    for (Tensor<1, dim> &force : forces)
-      force = Utilities::MPI::sum(force, dofs.get_communicator());
+
+  std::vector<Tensor<1, dim>>
+  BiofilmLoads::consistent_forces() const
+  {
+    const std::vector<Parameters::NamedBoundary> &boundaries =
+      parameters.force_boundaries;
+    std::vector<Tensor<1, dim>> forces(boundaries.size());
+    const DoFHandler<dim> &dofs = stokes.dof_handler();
+    const auto &           fe   = dofs.get_fe();
+
+    // F·e = −R(v) = −∫_Ω σ : ∇v for v = e at the boundary's velocity
+    // nodes and 0 at all others: the momentum equation's weak form
+    // integrated by parts, ∫_Ω σ : ∇v = ∫_∂Ω σn · v, evaluated with the
+    // assembly's quadrature, so that for a discrete solution it is the
+    // reaction of the constrained equations. v must be a finite element
+    // function: hanging nodes take the values of the nodes they hang on.
+    // Where the boundary meets another one (a channel's corners), v
+    // reaches onto the other's first faces; their part ∫ σn · v there is
+    // taken off with the face values (zero on a closed boundary such as
+    // a cylinder), else the force would pick up an O(h) share of the
+    // neighbour's traction.
+    IndexSet relevant;
+    DoFTools::extract_locally_relevant_dofs(dofs, relevant);
+    AffineConstraints<double> hanging(relevant);
+    DoFTools::make_hanging_node_constraints(dofs, hanging);
+    hanging.close();
+    const ComponentMask velocity = fe.component_mask(FEValuesExtractors::Vector(0));
+
+    std::vector<IndexSet> on_boundary;
+    for (const auto &boundary : boundaries)
+      on_boundary.push_back(
+        DoFTools::extract_boundary_dofs(dofs, velocity, {boundary.id}));
+    // v's nodal value at dof i for boundary b.
+    const auto value = [&](const unsigned int b, const types::global_dof_index i) {
+      if (!hanging.is_constrained(i))
+        return on_boundary[b].is_element(i) ? 1.0 : 0.0;
+      double sum = 0;
+      for (const auto &[j, weight] : *hanging.get_constraint_entries(i))
+        sum += (on_boundary[b].is_element(j) ? weight : 0.0);
+      return sum;
+    };
+
+    TotalStress<FEValues<dim>> cell_stress(
+      stokes.quadrature(), model, stokes, volume_fraction, stress);
+    const QGauss<dim - 1>          face_quadrature(fe.degree + 1);
+    TotalStress<FEFaceValues<dim>> face_stress(
+      face_quadrature, model, stokes, volume_fraction, stress, update_normal_vectors);
+    const FEValuesExtractors::Vector     velocities(0);
+    std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
+    std::vector<double>                  v(fe.n_dofs_per_cell());
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(local_dofs);
+          bool reinitialized = false;
+          for (unsigned int b = 0; b < boundaries.size(); ++b)
+            {
+              bool touches = false;
+              for (unsigned int i = 0; i < local_dofs.size(); ++i)
+                {
+                  v[i]    = (velocity[fe.system_to_component_index(i).first] ?
+                               value(b, local_dofs[i]) :
+                               0.0);
+                  touches = touches || v[i] != 0;
+                }
+              if (!touches)
+                continue;
+              if (!reinitialized)
+                cell_stress.reinit(cell);
+              reinitialized = true;
+              const auto &values = cell_stress.stokes_fe_values();
+              for (unsigned int i = 0; i < local_dofs.size(); ++i)
+                if (v[i] != 0)
+                  {
+                    const unsigned int d = fe.system_to_component_index(i).first;
+                    for (unsigned int q = 0; q < values.n_quadrature_points; ++q)
+                      forces[b][d] -= v[i] *
+                                      scalar_product(cell_stress.sigma[q],
+                                                     values[velocities].gradient(i, q)) *
+                                      values.JxW(q);
+                  }
+
+              for (const unsigned int f : cell->face_indices())
+                if (cell->face(f)->at_boundary() &&
+                    cell->face(f)->boundary_id() != boundaries[b].id)
+                  {
+                    face_stress.reinit(cell, f);
+                    const auto &face_values = face_stress.stokes_fe_values();
+                    for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                      {
+                        Tensor<1, dim> v_q;
+                        for (unsigned int i = 0; i < local_dofs.size(); ++i)
+                          if (v[i] != 0)
+                            v_q += v[i] * face_values[velocities].value(i, q);
+                        // v_q[d] is the weight of the component d.
+                        const Tensor<1, dim> traction =
+                          face_stress.sigma[q] * face_values.normal_vector(q);
+                        for (unsigned int d = 0; d < dim; ++d)
+                          forces[b][d] += traction[d] * v_q[d] * face_values.JxW(q);
+                      }
+                  }
+            }
+        }
     return forces;
   }
 

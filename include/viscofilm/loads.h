@@ -86,6 +86,11 @@ namespace viscofilm
     /// The force the fluid exerts on each force boundary (collective).
     std::vector<Tensor<1, dim>>
     boundary_forces() const;
+    /// This rank's part of the forces by Forces/Method.
+    std::vector<Tensor<1, dim>>
+    surface_integral_forces() const;
+    std::vector<Tensor<1, dim>>
+    consistent_forces() const;
 
     const Parameters &    parameters;
     const Model &         model;
