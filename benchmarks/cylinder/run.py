@@ -3,7 +3,7 @@
 coefficient K of an Oldroyd-B fluid (β = 0.59, blockage 0.5, creeping flow)
 against the published values, on three meshes.
 
-Usage:  benchmarks/cylinder/run.py [--levels 1,2,3] [--wi 0,0.1,...,0.7]
+Usage:  benchmarks/cylinder/run.py [--levels 2,3,4] [--wi 0,0.1,...,0.7]
             [--time-step K0] [--np N] [--work DIR] [--tolerance T]
             [--doc] [--quick]
 
@@ -232,9 +232,10 @@ def plot(levels, wis, results, path):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--levels", default="1,2,3", help="mesh refinement levels")
+    parser.add_argument("--levels", default="2,3,4",
+                        help="mesh refinement levels (2^(L+3) cells around the cylinder)")
     parser.add_argument("--wi", default="0,0.1,0.2,0.3,0.4,0.5,0.6,0.7")
-    parser.add_argument("--time-step", type=float, default=0.02,
+    parser.add_argument("--time-step", type=float, default=0.04,
                         help="time step on the coarsest level (halved per level)")
     parser.add_argument("--tolerance", type=float, default=1e-5)
     parser.add_argument("--np", type=int, default=2)
