@@ -131,7 +131,7 @@ def steadiness(rows, window):
 def read_rows(path):
     try:
         rows = read_csv(path)
-    except (OSError, ValueError):  # not written yet, or a line half written
+    except (OSError, ValueError, TypeError):  # not written yet, or a line half written
         return []
     return rows
 
