@@ -82,7 +82,7 @@ def main():
                 (axes[0], a, f"A: {run_a.name}", common),
                 (axes[1], b, f"B: {run_b.name}", common),
                 (axes[2], difference, f"A − B, max|A − B| = {largest:.3g}", None)]:
-            draw_field(fig, ax, tri, values, title, outlines, scale)
+            draw_field(fig, ax, tri, values, title, outlines, scale, length=run_a.units()[0])
         fig.suptitle(f"{describe(name)}, A at {snapshot_label(snap_a)}, "
                      f"B at {snapshot_label(snap_b)}   "
                      f"(biofilm φ = {vio.BIOFILM_LEVEL}: A solid, B dashed)")

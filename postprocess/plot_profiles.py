@@ -33,7 +33,8 @@ def main():
         snap = run.load(run.snapshots[0])
         phi = snap.field("volume_fraction")
         draw_field(fig, ax, snap.triangulation, phi, run.name,
-                   outlines=[(phi, {})], scale=dict(cmap="viridis", vmin=0, vmax=0.1))
+                   outlines=[(phi, {})], scale=dict(cmap="viridis", vmin=0, vmax=0.1),
+                   length=run.units()[0])
     fig.tight_layout()
     try:
         fig.savefig(args.out, dpi=90)

@@ -48,15 +48,16 @@ def draw_outline(ax, triangulation, phi, **style):
                       **{"colors": "k", "linewidths": 1.0, **style})
 
 
-def draw_field(fig, ax, triangulation, values, title, outlines=(), scale=None):
+def draw_field(fig, ax, triangulation, values, title, outlines=(), scale=None, length="cm"):
     """Colour map of node values on ax, with colour bar and biofilm outlines
-    (a sequence of (phi, style) pairs); scale: colour_scale() of other values."""
+    (a sequence of (phi, style) pairs); scale: colour_scale() of other values;
+    length: the unit of x and y."""
     mesh = ax.tripcolor(triangulation, np.nan_to_num(values), shading="gouraud",
                         **(scale or colour_scale(values)))
     for phi, style in outlines:
         draw_outline(ax, triangulation, phi, **style)
     fig.colorbar(mesh, ax=ax, shrink=0.85, format="%.3g")
-    ax.set(aspect="equal", xlabel="x [cm]", ylabel="y [cm]", title=title)
+    ax.set(aspect="equal", xlabel=f"x [{length}]", ylabel=f"y [{length}]", title=title)
     x, y = triangulation.x, triangulation.y
     ax.set(xlim=(x.min(), x.max()), ylim=(y.min(), y.max()))
 
@@ -72,7 +73,7 @@ def snapshot_label(snap):
     return f"step {snap.step}, t = {snap.time:.5g}"
 
 
-def plot_snapshot(snap, out_dir):
+def plot_snapshot(snap, out_dir, length):
     prefix = f"step{snap.step:05d}"
     phi = snap.fields.get("volume_fraction")
     names = snap.field_names()
@@ -80,7 +81,7 @@ def plot_snapshot(snap, out_dir):
     for name in names:
         fig, ax = plt.subplots(figsize=(6, 5))
         draw_field(fig, ax, tri, snap.fields[name],
-                   f"{describe(name)}, {snapshot_label(snap)}", [(phi, {})])
+                   f"{describe(name)}, {snapshot_label(snap)}", [(phi, {})], length=length)
         save(fig, out_dir, f"{prefix}_{name}.png")
 
     ncols = 4
@@ -88,7 +89,7 @@ def plot_snapshot(snap, out_dir):
     fig, axes = plt.subplots(nrows, ncols, figsize=(4.4 * ncols, 3.6 * nrows),
                              squeeze=False, layout="constrained")
     for ax, name in zip(axes.flat, names):
-        draw_field(fig, ax, tri, snap.fields[name], name, [(phi, {})])
+        draw_field(fig, ax, tri, snap.fields[name], name, [(phi, {})], length=length)
     for ax in axes.flat[len(names):]:
         ax.set_visible(False)
     fig.suptitle(snapshot_label(snap))
@@ -100,12 +101,12 @@ def plot_snapshot(snap, out_dir):
         surface = ax.plot_trisurf(tri, snap.fields[name], linewidth=0, antialiased=False,
                                   **colour_scale(snap.fields[name]))
         fig.colorbar(surface, ax=ax, shrink=0.6, format="%.3g")
-        ax.set(xlabel="x [cm]", ylabel="y [cm]", zlabel=name,
+        ax.set(xlabel=f"x [{length}]", ylabel=f"y [{length}]", zlabel=name,
                title=f"{describe(name)}, {snapshot_label(snap)}")
         save(fig, out_dir, f"{prefix}_{name}_surface.png")
 
 
-def plot_statistics(stats, out_dir):
+def plot_statistics(stats, out_dir, time_unit):
     columns = vio.numeric_columns(stats)
     if "time" not in stats or not columns or not len(stats["time"]):
         print("note: statistics.csv has no data to plot")
@@ -122,12 +123,12 @@ def plot_statistics(stats, out_dir):
         ax.set_visible(False)
     for ax in axes.flat[max(0, len(columns) - ncols):len(columns)]:  # bottom of each column
         ax.tick_params(labelbottom=True)
-        ax.set_xlabel("time [T0 = 60 s]")
+        ax.set_xlabel(f"time [{time_unit}]")
     fig.tight_layout()
     save(fig, out_dir, "statistics.png")
 
 
-def plot_probes(run, out_dir):
+def plot_probes(run, out_dir, time_unit):
     if not os.path.isfile(run.path("probes.csv")):
         print("note: no probes.csv (no Output/Probe points): probe plot skipped")
         return
@@ -144,7 +145,7 @@ def plot_probes(run, out_dir):
         ax.set_ylabel(name.replace("_", " "))
         ax.grid(alpha=0.3)
     axes[0, 0].legend(title="probe (x, y)", fontsize="small")
-    axes[-1, 0].set_xlabel("time [T0 = 60 s]")
+    axes[-1, 0].set_xlabel(f"time [{time_unit}]")
     fig.tight_layout()
     save(fig, out_dir, "probes.png")
 
@@ -191,11 +192,12 @@ def main():
         chosen = next((s for s in run.snapshots if s.step == 100), run.snapshots[-1])
     out_dir = vio.output_directory(args.out or os.path.join(args.run_dir, "figures"))
 
+    length, time_unit = run.units()
     for info in dict.fromkeys([run.snapshots[0], chosen]):
         snap = run.load(info)
-        plot_snapshot(snap, out_dir)
-    plot_statistics(stats, out_dir)
-    plot_probes(run, out_dir)
+        plot_snapshot(snap, out_dir, length)
+    plot_statistics(stats, out_dir, time_unit)
+    plot_probes(run, out_dir, time_unit)
     summary(snap)  # the chosen snapshot is drawn last
 
 

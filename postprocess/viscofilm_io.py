@@ -192,6 +192,25 @@ class Run:
     def statistics(self):
         return read_csv(self.path("statistics.csv"))
 
+    def units(self):
+        """(length unit, time unit) of the run's output: Model/Units in its
+        parameters.prm, SI (m, s) or dimensionless (L0 = 1 cm, T0 = 60 s, the
+        default and what a run without parameters.prm is taken to be)."""
+        section, units = [], "dimensionless"
+        try:
+            with open(self.path("parameters.prm")) as f:
+                for line in f:
+                    words = line.split("#", 1)[0].split()
+                    if words[:1] == ["subsection"]:
+                        section.append(" ".join(words[1:]))
+                    elif words[:1] == ["end"] and section:
+                        section.pop()
+                    elif section == ["Model"] and words[:3] == ["set", "Units", "="]:
+                        units = " ".join(words[3:])
+        except OSError:
+            pass
+        return ("m", "s") if units == "SI" else ("cm", "T0 = 60 s")
+
     def probes(self):
         """{(x, y): {column: array}} with one entry per probe point."""
         table = read_csv(self.path("probes.csv"))

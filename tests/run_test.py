@@ -36,8 +36,8 @@ Modes
 In modes run and convergence, --bound "file.csv:column<value" (or >) must hold
 in every row of the run(s), and "file.csv:max(column)<value" (or sum) for the
 largest value or the sum over the rows: a check against a stated limit,
-whatever the reference says. "file.csv[step>0]:..." checks only the rows
-after the initial state.
+whatever the reference says. "file.csv[step>N]:..." checks only the rows
+after step N ([step>0]: after the initial state).
 
 Set VISCOFILM_BLESS=1 to write the reference instead of comparing (only after
 checking the output against the analytic answer by hand).
@@ -130,14 +130,14 @@ def check_bounds(opts, directory):
     """Each bound holds at every row, or, for max(column) and sum(column), for
     the largest value or the sum over the rows."""
     for bound in opts.bound:
-        match = re.fullmatch(r"([^[]+)(\[step>0\])?:(\w+|max\(\w+\)|sum\(\w+\))([<>])(.+)",
+        match = re.fullmatch(r"([^[]+)(?:\[step>(\d+)\])?:(\w+|max\(\w+\)|sum\(\w+\))([<>])(.+)",
                              bound)
         if not match:
             fail("bad --bound " + bound)
-        filename, after_start, column, relation, limit = match.groups()
+        filename, after_step, column, relation, limit = match.groups()
         rows = read_csv(os.path.join(directory, filename))
-        if after_start:
-            rows = [row for row in rows if float(row["step"]) > 0]
+        if after_step:
+            rows = [row for row in rows if float(row["step"]) > int(after_step)]
         reduction = re.fullmatch(r"(max|sum)\((\w+)\)", column)
         if reduction:
             values = [float(row[reduction.group(2)]) for row in rows]

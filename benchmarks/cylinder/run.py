@@ -1,0 +1,296 @@
+#!/usr/bin/python3
+"""benchmarks/cylinder/run.py -- the confined-cylinder benchmark: the drag
+coefficient K of an Oldroyd-B fluid (β = 0.59, blockage 0.5, creeping flow)
+against the published values, on three meshes.
+
+Usage:  benchmarks/cylinder/run.py [--levels 2,3,4] [--wi 0,0.1,...,0.7]
+            [--time-step K0] [--np N] [--work DIR] [--tolerance T]
+            [--doc] [--quick]
+
+Runs prm/cylinder.prm once per mesh level (Geometry/Initial global
+refinement) and Weissenberg number, each on N MPI ranks (default 2), and
+takes K = force_x_Cylinder (ηs + ηp = 1, mean inflow velocity 1, R = 1, per
+unit depth, so K = F/(μU)). Wi = 0 is the Newtonian fluid of viscosity 1
+(Model/Viscoelastic = false, one steady Stokes solve). For Wi > 0 the time
+step is K0 on the coarsest level, halved with each level (so that h and k
+shrink together), and a run is stopped as soon as it is steady: K changed by
+less than T (relative, default 1e-5) over the last max(1, 2 Wi) time units
+(read from statistics.csv while it runs). A run that reaches its last step
+unsteady is marked in the table.
+
+Prints the table of K per mesh, the published K, the relative error of the
+finest mesh, the observed order p = log2(|K1 − K2| / |K2 − K3|) of the last
+three levels and the Richardson extrapolation with that order. --doc also
+writes doc/figures/cylinder_drag.png (K(Wi)) and the table as markdown to
+benchmarks/cylinder/results.md (pasted into doc/verification.md).
+--work keeps the runs in DIR (default benchmarks/cylinder/runs) and reuses
+every finished run whose case.prm is unchanged. --quick: the coarsest level,
+Wi = 0 and 0.1 only (checks the set-up in a few minutes).
+"""
+
+import argparse
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+
+SCRIPT_DIR = os.path.dirname(os.path.realpath(__file__))
+sys.path.insert(0, os.path.dirname(SCRIPT_DIR))
+from benchlib import (REPO, die, ensure_binary, log, machine_description,  # noqa: E402
+                      mpi_environment, read_csv, source_of)
+
+# Published drag coefficients K = F/(μU), rounded to 0.01: the values of
+# Alves, Pinho & Oliveira 2001 (J. Non-Newt. Fluid Mech. 97, 207-232) and
+# Hulsen, Fattal & Kupferman 2005 (J. Non-Newt. Fluid Mech. 127, 27-39),
+# which agree to 0.03 %. doc/verification.md says which could be checked
+# against a copy of the table and which against secondary sources only.
+PUBLISHED = {0.0: 132.36, 0.1: 130.36, 0.2: 126.62, 0.3: 123.19, 0.4: 120.59,
+             0.5: 118.83, 0.6: 117.78, 0.7: 117.32}
+# The parameter that lists the boundaries whose forces statistics.csv gets
+# (helper "forces"; must match prm/cylinder.prm).
+FORCE_ENTRY = ("Forces", "Boundaries")
+FORCE_COLUMN = "force_x_cylinder"  # matched case-insensitively
+ETA_P = 0.41
+POLL_SECONDS = 2.0
+
+
+def case_prm(directory, level, wi, time_step, steps):
+    """The parameters of one run: prm/cylinder.prm with the mesh level, Wi,
+    the time step and the output directory replaced."""
+    if wi == 0:
+        model = """subsection Model
+  set Viscoelastic = false
+  subsection Water
+    set Solvent viscosity = 1
+    set Polymer viscosity = 0
+  end
+  subsection Biofilm
+    set Solvent viscosity = 1
+    set Polymer viscosity = 0
+  end
+end
+"""
+        constants = "Wi=0, etap=0"
+    else:
+        model = """subsection Model
+  subsection Water
+    set Relaxation time = %r
+  end
+  subsection Biofilm
+    set Relaxation time = %r
+  end
+end
+""" % (wi, wi)
+        constants = "Wi=%r, etap=%r" % (wi, ETA_P)
+    return """include %s
+subsection Geometry
+  set Initial global refinement = %d
+end
+%ssubsection Boundary conditions
+  subsection Inlet
+    set Function constants = %s
+  end
+end
+subsection Initial conditions
+  set Function constants = %s
+end
+subsection Time stepping
+  set Time step       = %r
+  set Number of steps = %d
+end
+subsection Output
+  set Directory = %s
+  set Interval  = 0
+end
+""" % (os.path.join(REPO, "prm", "cylinder.prm"), level, model, constants, constants,
+       time_step, steps, directory)
+
+
+def force_column(row):
+    for key in row:
+        if key.lower() == FORCE_COLUMN:
+            return key
+    die("statistics.csv has no column %s (is %s/%s = Cylinder set?); columns: %s"
+        % (FORCE_COLUMN, FORCE_ENTRY[0], FORCE_ENTRY[1], ", ".join(row)))
+
+
+def steadiness(rows, window):
+    """(K, t, relative change of K over the last @p window time units or None
+    if the run is not that long yet)."""
+    key = force_column(rows[-1])
+    t_end, k_end = rows[-1]["time"], rows[-1][key]
+    if t_end < window:
+        return k_end, t_end, None
+    recent = [row[key] for row in rows if row["time"] >= t_end - window]
+    return k_end, t_end, max(abs(k - k_end) for k in recent) / abs(k_end)
+
+
+def read_rows(path):
+    try:
+        rows = read_csv(path)
+    except (OSError, ValueError, TypeError):  # not written yet, or a line half written
+        return []
+    return rows
+
+
+def run_to_steady_state(binary, ranks, directory, prm_text, window, tolerance):
+    """Run one case (or reuse its result.json) and return its result. With
+    @p window None the run is one steady Stokes solve (steady by definition)."""
+    os.makedirs(directory, exist_ok=True)
+    prm = os.path.join(directory, "case.prm")
+    result_file = os.path.join(directory, "result.json")
+    if os.path.exists(result_file) and os.path.exists(prm) and open(prm).read() == prm_text:
+        return json.load(open(result_file))
+    with open(prm, "w") as f:
+        f.write(prm_text)
+    statistics = os.path.join(directory, "statistics.csv")
+    if os.path.exists(statistics):
+        os.remove(statistics)
+    start = time.time()
+    with open(os.path.join(directory, "run.log"), "w") as output:
+        # its own session, so that stopping it stops mpirun and its ranks only
+        process = subprocess.Popen(["mpirun", "-np", str(ranks), binary, prm], stdout=output,
+                                   stderr=subprocess.STDOUT, env=mpi_environment(),
+                                   start_new_session=True)
+        steady = False
+        while process.poll() is None:
+            time.sleep(POLL_SECONDS)
+            rows = read_rows(statistics) if window else []
+            if len(rows) > 1:
+                change = steadiness(rows, window)[2]
+                if change is not None and change < tolerance:
+                    steady = True
+                    os.killpg(process.pid, signal.SIGTERM)
+                    process.wait()
+                    break
+    wall = time.time() - start
+    rows = read_rows(statistics)
+    if not steady and process.returncode != 0:
+        die("the run in %s failed (exit %d); see its run.log" % (directory, process.returncode))
+    if not rows:
+        die("the run in %s wrote no statistics.csv" % directory)
+    k, t, change = steadiness(rows, window or 0.0)
+    result = {"K": k, "time": t, "steps": len(rows) - 1, "wall": wall, "change": change,
+              "steady": window is None or steady or (change is not None and change < tolerance)}
+    with open(result_file, "w") as f:
+        json.dump(result, f, indent=1)
+    return result
+
+
+def order_and_extrapolation(values):
+    """Observed order and Richardson extrapolation from the last three
+    values of a sequence on meshes refined by 2 (None where undefined)."""
+    if len(values) < 3:
+        return None, None
+    k1, k2, k3 = values[-3:]
+    if k2 == k3 or (k1 - k2) / (k2 - k3) <= 0:
+        return None, None
+    p = math.log2(abs(k1 - k2) / abs(k2 - k3))
+    return p, k3 + (k3 - k2) / (2 ** p - 1)
+
+
+def table(levels, wis, results):
+    header = ("| Wi | " + " | ".join("K, level %d" % level for level in levels)
+              + " | published K | error of the finest | order p | extrapolated K |")
+    lines = [header, "|" + "---|" * (len(levels) + 5)]
+    for wi in wis:
+        values = [results[(level, wi)]["K"] for level in levels]
+        cells = ["%.3f%s" % (v, "" if results[(level, wi)]["steady"] else " (unsteady)")
+                 for v, level in zip(values, levels)]
+        published = PUBLISHED.get(wi)
+        error = "%+.2f %%" % (100 * (values[-1] - published) / published) if published else "–"
+        p, extrapolated = order_and_extrapolation(values)
+        lines.append("| %g | %s | %s | %s | %s | %s |" % (
+            wi, " | ".join(cells), published or "–", error,
+            "%.2f" % p if p is not None else "–",
+            "%.3f" % extrapolated if extrapolated is not None else "–"))
+    return "\n".join(lines)
+
+
+def plot(levels, wis, results, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    published = sorted(PUBLISHED.items())
+    ax.plot([w for w, _ in published], [k for _, k in published], "ks--", mfc="none",
+            label="Alves et al. 2001, Hulsen et al. 2005")
+    for level in levels:
+        ax.plot(wis, [results[(level, wi)]["K"] for wi in wis], "o-",
+                label="viscofilm, refinement %d" % level)
+    ax.set(xlabel="Wi = λU/R", ylabel="K = F_x / (μU)",
+           title="Confined cylinder, Oldroyd-B, β = 0.59, R/H = 0.5")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--levels", default="2,3,4",
+                        help="mesh refinement levels (2^(L+3) cells around the cylinder)")
+    parser.add_argument("--wi", default="0,0.1,0.2,0.3,0.4,0.5,0.6,0.7")
+    parser.add_argument("--time-step", type=float, default=0.04,
+                        help="time step on the coarsest level (halved per level)")
+    parser.add_argument("--tolerance", type=float, default=1e-5)
+    parser.add_argument("--np", type=int, default=2)
+    parser.add_argument("--work", default=os.path.join(SCRIPT_DIR, "runs"))
+    parser.add_argument("--doc", action="store_true",
+                        help="write doc/figures/cylinder_drag.png and results.md")
+    parser.add_argument("--quick", action="store_true")
+    arguments = parser.parse_args()
+    levels = sorted(int(level) for level in arguments.levels.split(","))
+    wis = sorted(float(wi) for wi in arguments.wi.split(","))
+    if arguments.quick:
+        levels, wis = levels[:1], [0.0, 0.1]
+    build, binary = ensure_binary()
+    log("%s; viscofilm %s" % (machine_description(), source_of(build)[1]))
+
+    cases = [(level, wi) for level in levels for wi in wis]
+    results, walls = {}, {}
+    start = time.time()
+    for number, (level, wi) in enumerate(cases):
+        k = arguments.time_step / 2 ** (level - levels[0])
+        window = max(1.0, 2 * wi) if wi > 0 else None
+        end_time = 10 + 30 * wi  # far beyond steady state (3.2 s of relaxation at Wi = 0.7)
+        steps = 1 if wi == 0 else math.ceil(end_time / k)
+        directory = os.path.join(arguments.work, "level%d-Wi%g" % (level, wi))
+        results[(level, wi)] = run_to_steady_state(
+            binary, arguments.np, directory, case_prm(directory, level, wi, k, steps), window,
+            arguments.tolerance)
+        result = results[(level, wi)]
+        walls[(level, wi)] = result["wall"]
+        # what is left: each remaining case costs what the same Wi cost one
+        # level coarser times 8 (4x the cells, 2x the steps), or what the
+        # last case of its level cost
+        left = 0.0
+        for other in cases[number + 1:]:
+            coarser = (other[0] - 1, other[1])
+            same_level = [w for (lv, _), w in walls.items() if lv == other[0]]
+            left += (8 * walls[coarser] if coarser in walls
+                     else same_level[-1] if same_level else 8 * result["wall"])
+        log("case %d/%d: level %d, Wi %g: K = %.4f at t = %.2f (%d steps, %s) in %.0f s; "
+            "elapsed %.1f min, about %.0f min left"
+            % (number + 1, len(cases), level, wi, result["K"], result["time"], result["steps"],
+               "steady" if result["steady"] else "NOT steady", result["wall"],
+               (time.time() - start) / 60, left / 60))
+
+    text = table(levels, wis, results)
+    print(text)
+    if arguments.doc:
+        with open(os.path.join(SCRIPT_DIR, "results.md"), "w") as f:
+            f.write("<!-- benchmarks/cylinder/run.py --doc --levels %s --time-step %g"
+                    " --tolerance %g; %s -->\n%s\n"
+                    % (arguments.levels, arguments.time_step, arguments.tolerance,
+                       machine_description(), text))
+        plot(levels, wis, results, os.path.join(REPO, "doc", "figures", "cylinder_drag.png"))
+        log("wrote benchmarks/cylinder/results.md and doc/figures/cylinder_drag.png")
+
+
+if __name__ == "__main__":
+    main()
