@@ -249,7 +249,9 @@ namespace viscofilm
                       "comma-separated) on which statistics.csv's "
                       "wall_shear_stress_mean/max are taken: the tangential "
                       "traction the fluid exerts on them (doc/loads.md). "
-                      "Empty: none (the columns are 0).");
+                      "Empty: none (the columns are 0). The default, Bottom "
+                      "(the thesis' wall), means none on a mesh without a "
+                      "boundary of that name.");
     prm.leave_subsection();
 
     prm.enter_subsection("Forces");
@@ -283,7 +285,14 @@ namespace viscofilm
     prm.enter_subsection("Detachment");
     stress_threshold = prm.get_double("Stress threshold");
     interface_level  = prm.get_double("Interface volume fraction");
-    walls = named_boundaries(prm.get("Walls"), "Detachment/Walls", boundary_conditions);
+    const bool has_bottom =
+      std::any_of(boundary_conditions.boundaries.begin(),
+                  boundary_conditions.boundaries.end(),
+                  [](const BoundaryConditions::Boundary &b) { return b.name == "Bottom"; });
+    const std::string wall_names = prm.get("Walls");
+    walls = (wall_names == "Bottom" && !has_bottom) ?
+              std::vector<NamedBoundary>() :
+              named_boundaries(wall_names, "Detachment/Walls", boundary_conditions);
     prm.leave_subsection();
     check_input(interface_level > 0 && interface_level < 1,
                 "Detachment/Interface volume fraction must be in (0, 1), got " +
