@@ -38,6 +38,25 @@ namespace viscofilm
   {}
 
 
+  namespace
+  {
+    /// @p p in @p cell's reference coordinates, or nothing where the
+    /// bilinear map has no inverse (far from a distorted cell).
+    std::optional<Point<dim>>
+    unit_point(const Triangulation<dim>::cell_iterator &cell, const Point<dim> &p)
+    {
+      try
+        {
+          return mapping().transform_real_to_unit_cell(cell, p);
+        }
+      catch (const Mapping<dim>::ExcTransformationFailed &)
+        {
+          return std::nullopt;
+        }
+    }
+  } // namespace
+
+
   PointEvaluator::Trace
   PointEvaluator::trace(Triangulation<dim>::active_cell_iterator cell,
                         const Point<dim> &                       from,
@@ -48,15 +67,33 @@ namespace viscofilm
     Point<dim> a = from, b = to; // the segment, in the frame of cell
     for (unsigned int step = 0; step < max_walk_steps && !cell->is_artificial(); ++step)
       {
-        const Point<dim> unit_b = mapping().transform_real_to_unit_cell(cell, b);
-        if (GeometryInfo<dim>::distance_to_unit_cell(unit_b) < unit_tolerance)
-          return {cell, unit_b, b, numbers::invalid_unsigned_int, true};
+        std::optional<Point<dim>> mapped_b = unit_point(cell, b);
+        if (mapped_b &&
+            GeometryInfo<dim>::distance_to_unit_cell(*mapped_b) < unit_tolerance)
+          return {cell, *mapped_b, b, numbers::invalid_unsigned_int, true};
+        // Where b is too far from a distorted cell for the inverse map,
+        // aim at a point of the segment closer to a; if that point is still
+        // in the cell, walk on from it.
+        Point<dim> target = b;
+        for (unsigned int halving = 0; !mapped_b && halving < 40; ++halving)
+          {
+            target   = a + 0.5 * (target - a);
+            mapped_b = unit_point(cell, target);
+          }
+        const std::optional<Point<dim>> mapped_a = unit_point(cell, a);
+        if (!mapped_b || !mapped_a)
+          break;
+        if (GeometryInfo<dim>::distance_to_unit_cell(*mapped_b) < unit_tolerance)
+          {
+            a = target;
+            continue;
+          }
+        const Point<dim> unit_b = *mapped_b;
         // The face through which the segment a–b leaves the cell (in
         // reference coordinates: exact on parallelograms): the first one
         // b lies beyond, by more than the tolerance (a segment along a
         // wall, b beyond it by round-off, leaves through the far face).
-        const Point<dim> unit_a =
-          GeometryInfo<dim>::project_to_unit_cell(mapping().transform_real_to_unit_cell(cell, a));
+        const Point<dim> unit_a = GeometryInfo<dim>::project_to_unit_cell(*mapped_a);
         unsigned int face = numbers::invalid_unsigned_int;
         double       exit = std::numeric_limits<double>::max();
         for (unsigned int d = 0; d < dim; ++d)
@@ -109,8 +146,9 @@ namespace viscofilm
             double       distance = std::numeric_limits<double>::max();
             for (unsigned int c = 0; c < next->n_children(); ++c)
               {
-                const double d = GeometryInfo<dim>::distance_to_unit_cell(
-                  mapping().transform_real_to_unit_cell(next->child(c), a));
+                const std::optional<Point<dim>> unit = unit_point(next->child(c), a);
+                const double d = unit ? GeometryInfo<dim>::distance_to_unit_cell(*unit) :
+                                        std::numeric_limits<double>::max();
                 if (d < distance)
                   {
                     distance = d;
