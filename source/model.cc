@@ -369,6 +369,25 @@ namespace viscofilm
   }
 
 
+  double
+  Model::elastic_viscosity(const double                   volume_fraction,
+                           const double                   k,
+                           const SymmetricTensor<2, dim> &stress) const
+  {
+    // c^{n+1} = (w E c Eᵀ + kβ I)/(w + kα) with E ≈ I + kΦ: Δc = w k (Φc +
+    // cΦᵀ)/(w + kα), 2 a c_rest w k D(u)/(w + kα) at rest and at most
+    // c_max/c_rest times that when stretched; τ = G Δc, the flow sees s τ.
+    const Relaxation r = relaxation(volume_fraction);
+    if (r.weight + k * r.alpha == 0)
+      return 0;
+    const double c_max =
+      std::max(relaxed_conformation(),
+               eigenvalues(conformation(stress, volume_fraction))[0]);
+    return stress_coupling(volume_fraction) * stress_modulus(volume_fraction) *
+           std::abs(slip_parameter) * c_max * r.weight * k / (r.weight + k * r.alpha);
+  }
+
+
   void
   Model::print(ConditionalOStream &out) const
   {

@@ -221,6 +221,19 @@ namespace viscofilm
                       "locally conservative discretisation), whose pressure may "
                       "jump between cells as the true one does at the viscosity "
                       "jump: ∫_K ∇·u = 0 on every cell K. See doc/numerics.md.");
+    prm.declare_entry("Implicit elastic viscosity",
+                      "false",
+                      Patterns::Bool(),
+                      "false: the Picard loop puts the elastic stress on the "
+                      "right-hand side only (the thesis); it contracts only "
+                      "where the viscosity with which one step's stress update "
+                      "answers a velocity gradient, about ηp k/(λ + k), is "
+                      "below the solvent viscosity ηs, which the thesis "
+                      "mixture always meets and a biofilm with ηs << ηp "
+                      "(Model/Rheology = phases) does not. true: that "
+                      "viscosity is added to the matrix and, times the current "
+                      "iterate's 2D(u), to the right-hand side; both cancel "
+                      "when the loop has converged (doc/numerics.md).");
     prm.enter_subsection("Preconditioner");
     prm.declare_entry("Krylov basis",
                       "100",
@@ -296,6 +309,7 @@ namespace viscofilm
     pressure_element = (prm.get("Pressure element") == "discontinuous" ?
                           PressureElement::discontinuous :
                           PressureElement::continuous);
+    implicit_elastic_viscosity = prm.get_bool("Implicit elastic viscosity");
     prm.enter_subsection("Preconditioner");
     krylov_basis              = prm.get_integer("Krylov basis");
     cheap_iterations          = prm.get_integer("Cheap iterations");
@@ -493,6 +507,14 @@ namespace viscofilm
     std::vector<Tensor<1, 2>>          old_velocity(n_q_points);
     std::vector<Vector<double>>        body_force(n_q_points, Vector<double>(2));
     std::vector<SymmetricTensor<2, 2>> tau(n_q_points);
+    std::vector<double>                elastic_viscosity(n_q_points, 0.0);
+    std::vector<SymmetricTensor<2, 2>> iterate_strain_rate(n_q_points);
+    const bool implicit_elastic =
+      parameters.implicit_elastic_viscosity && model.viscoelastic;
+    if (implicit_elastic && assemble_matrix)
+      elastic_viscosity_cache.resize(triangulation.n_locally_owned_active_cells() *
+                                     n_q_points);
+    std::size_t cached = 0;
     const bool                         use_feet = !old_velocity_at_feet.empty();
     unsigned int                       foot     = 0;
 
@@ -519,6 +541,26 @@ namespace viscofilm
                                             volume_fraction);
           for (unsigned int q = 0; q < n_q_points; ++q)
             viscosity[q] = model.viscosity(volume_fraction[q]);
+          if (coefficients.elastic_stress)
+            coefficients.elastic_stress(cell, volume_fraction, tau);
+          if (implicit_elastic)
+            {
+              // From τ^n (the stress iterate when the matrix is built, at the
+              // step's first Picard iteration), kept for the step: matrix and
+              // right-hand side must use the same η_e for the two to cancel.
+              fe_values[velocities].get_function_symmetric_gradients(current_solution,
+                                                                     iterate_strain_rate);
+              for (unsigned int q = 0; q < n_q_points; ++q, ++cached)
+                {
+                  if (assemble_matrix)
+                    elastic_viscosity_cache[cached] =
+                      model.elastic_viscosity(volume_fraction[q],
+                                              coefficients.time_step,
+                                              tau[q]);
+                  elastic_viscosity[q] = elastic_viscosity_cache[cached];
+                  viscosity[q] += elastic_viscosity[q];
+                }
+            }
           average_viscosity(parameters.averaging, fe_values.get_JxW_values(), viscosity);
 
           if (use_feet)
@@ -528,8 +570,6 @@ namespace viscofilm
             fe_values[velocities].get_function_values(old_solution, old_velocity);
           coefficients.body_force->vector_value_list(
             fe_values.get_quadrature_points(), body_force);
-          if (coefficients.elastic_stress)
-            coefficients.elastic_stress(cell, volume_fraction, tau);
 
           // With the matrix current, the cell matrix is needed only to move
           // the inhomogeneities of constrained dofs to the right-hand side:
@@ -560,8 +600,11 @@ namespace viscofilm
               const Tensor<1, 2> rhs_vector =
                 mass_coefficient * old_velocity[q] + force;
               // s(φ) τ: φ τ in the thesis (eq. 2.34), τ for phases.
+              // With the implicit elastic viscosity η_e in the matrix, its
+              // explicit twin 2 η_e D(u^l) joins s τ on the right.
               const SymmetricTensor<2, 2> phi_tau =
-                model.stress_coupling(volume_fraction[q]) * tau[q];
+                model.stress_coupling(volume_fraction[q]) * tau[q] -
+                2 * elastic_viscosity[q] * iterate_strain_rate[q];
 
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {

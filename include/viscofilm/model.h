@@ -101,6 +101,15 @@ namespace viscofilm
     Relaxation
     relaxation(const double volume_fraction) const;
 
+    /// The viscosity with which the update of one step of length @p k
+    /// answers a velocity gradient, s G w k a c_max / (w + k α) with c_max
+    /// the largest eigenvalue of the conformation of @p stress, at least
+    /// c_rest (thesis at rest: φ² ηp k/(λφ + k); phases: ηp k/(λ + k)).
+    double
+    elastic_viscosity(const double                   volume_fraction,
+                      const double                   k,
+                      const SymmetricTensor<2, dim> &stress) const;
+
     /// Print the rheology, the derived dimensionless numbers and the scales
     /// used for them, and warnings about entries the choice ignores.
     void

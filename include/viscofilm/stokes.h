@@ -72,6 +72,10 @@ namespace viscofilm
       unsigned int    max_iterations = 1000;
       Averaging       averaging      = Averaging::none;
       PressureElement pressure_element = PressureElement::continuous;
+      /// Put the update's elastic viscosity (Model::elastic_viscosity) into
+      /// the matrix and its explicit twin into the right-hand side, so that
+      /// the Picard loop contracts where ηp k/(λ + k) exceeds ηs.
+      bool implicit_elastic_viscosity = false;
 
       /// The block preconditioner's parts (Method = block preconditioned).
       unsigned int krylov_basis        = 100;  // FGMRES restart length
@@ -228,6 +232,9 @@ namespace viscofilm
     TrilinosWrappers::MPI::BlockVector system_rhs;
     TrilinosWrappers::MPI::BlockVector current_solution; // ghosted
     TrilinosWrappers::MPI::BlockVector old_solution;     // ghosted, u^n
+    /// Model::elastic_viscosity at each owned cell's quadrature points, from
+    /// the assembly that built the matrix (Implicit elastic viscosity).
+    std::vector<double> elastic_viscosity_cache;
     std::vector<Tensor<1, 2>>          old_velocity_at_feet; // per owned cell and q
 
     std::unique_ptr<DataPostprocessor<2>> flow_postprocessor;
