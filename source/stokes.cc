@@ -543,11 +543,13 @@ namespace viscofilm
             viscosity[q] = model.viscosity(volume_fraction[q]);
           if (coefficients.elastic_stress)
             coefficients.elastic_stress(cell, volume_fraction, tau);
+          average_viscosity(parameters.averaging, fe_values.get_JxW_values(), viscosity);
           if (implicit_elastic)
             {
               // From τ^n (the stress iterate when the matrix is built, at the
               // step's first Picard iteration), kept for the step: matrix and
-              // right-hand side must use the same η_e for the two to cancel.
+              // right-hand side must use the same η_e for the two to cancel (added
+              // after the averaging, which is a model of ηs only).
               fe_values[velocities].get_function_symmetric_gradients(current_solution,
                                                                      iterate_strain_rate);
               for (unsigned int q = 0; q < n_q_points; ++q, ++cached)
@@ -561,7 +563,6 @@ namespace viscofilm
                   viscosity[q] += elastic_viscosity[q];
                 }
             }
-          average_viscosity(parameters.averaging, fe_values.get_JxW_values(), viscosity);
 
           if (use_feet)
             for (unsigned int q = 0; q < n_q_points; ++q)
