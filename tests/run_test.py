@@ -202,7 +202,11 @@ def mode_convergence(opts, workdir):
         last = read_csv(os.path.join(output_directory(workdir, prm),
                                      "statistics.csv"))[-1]
         for name in errors:
-            errors[name].append(float(last[name]))
+            # "column@value": the error of the column against a published
+            # value, |column − value|; otherwise the column is an error.
+            column, _, reference = name.partition("@")
+            value = float(last[column])
+            errors[name].append(abs(value - float(reference)) if reference else value)
 
     lines = [varied[0][0].replace(" ", "_") + "," +
              ",".join("%s,rate" % n for n in errors)]
