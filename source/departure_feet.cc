@@ -6,6 +6,8 @@
 
 #include <deal.II/matrix_free/fe_point_evaluation.h>
 
+#include <viscofilm/dof_cell.h>
+#include <viscofilm/boundary_conditions.h>
 #include <viscofilm/departure_feet.h>
 #include <viscofilm/input.h>
 
@@ -300,11 +302,7 @@ namespace viscofilm
       [&](const Triangulation<dim>::active_cell_iterator &cell,
           const ArrayView<const Point<dim>> &             unit_points,
           const ArrayView<std::array<double, 6>> &      values) {
-        const DoFHandler<dim>::active_cell_iterator dof_cell(&stokes_dofs.get_triangulation(),
-                                                           cell->level(),
-                                                           cell->index(),
-                                                           &stokes_dofs);
-        dof_cell->get_dof_values(stokes_solution, dof_values.begin(), dof_values.end());
+        cell_of(stokes_dofs, cell)->get_dof_values(stokes_solution, dof_values.begin(), dof_values.end());
         velocity.reinit(cell, unit_points);
         velocity.evaluate(dof_values,
                           EvaluationFlags::values | EvaluationFlags::gradients);
@@ -497,7 +495,7 @@ namespace viscofilm
     evaluator.reinit(points, feet, own_cells);
 
     // Inflow where u·n < 0 at the cut, relative to the velocity scale as
-    // VolumeFraction's inflow faces: a wall crossed by round-off is none.
+    // VolumeFraction's inflow faces (inflow_threshold).
     max_speed = Utilities::MPI::max(max_speed, comm);
     inflow.assign(points.size(), numbers::invalid_boundary_id);
     FEPointEvaluation<dim, dim> velocity(mapping(),
@@ -508,11 +506,7 @@ namespace viscofilm
     for (unsigned int i = 0; i < points.size(); ++i)
       if (cuts[i].found)
         {
-          const DoFHandler<dim>::active_cell_iterator dof_cell(&triangulation,
-                                                               cuts[i].cell->level(),
-                                                               cuts[i].cell->index(),
-                                                               &stokes_dofs);
-          dof_cell->get_dof_values(stokes_solution, dof_values.begin(), dof_values.end());
+          cell_of(stokes_dofs, cuts[i].cell)->get_dof_values(stokes_solution, dof_values.begin(), dof_values.end());
           velocity.reinit(cuts[i].cell, make_array_view(&cuts[i].unit_point, &cuts[i].unit_point + 1));
           velocity.evaluate(dof_values, EvaluationFlags::values);
           // Outward normal of face f: ∓∇ξ_d, d = f/2, a row of J^{-1}.
@@ -521,7 +515,7 @@ namespace viscofilm
           for (unsigned int e = 0; e < dim; ++e)
             normal[e] = velocity.inverse_jacobian(0)[f / 2][e];
           normal *= (f % 2 == 0 ? -1. : 1.) / normal.norm();
-          if (velocity.get_value(0) * normal < -1e-8 * max_speed)
+          if (velocity.get_value(0) * normal < -inflow_threshold * max_speed)
             inflow[i] = cuts[i].cell->face(f)->boundary_id();
         }
 

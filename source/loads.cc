@@ -6,6 +6,7 @@
 
 #include <deal.II/lac/affine_constraints.h>
 
+#include <viscofilm/dof_cell.h>
 #include <viscofilm/boundary_conditions.h>
 #include <viscofilm/input.h>
 #include <viscofilm/loads.h>
@@ -86,15 +87,9 @@ namespace viscofilm
       void
       reinit(const CellIterator &cell, const Face... face)
       {
-        const auto on = [&](const DoFHandler<2> &dofs) {
-          return DoFHandler<2>::active_cell_iterator(&dofs.get_triangulation(),
-                                                     cell->level(),
-                                                     cell->index(),
-                                                     &dofs);
-        };
-        stokes_values.reinit(on(stokes.dof_handler()), face...);
-        phi_values.reinit(on(volume_fraction.dof_handler()), face...);
-        stress_values.reinit(on(stress.dof_handler()), face...);
+        stokes_values.reinit(cell_of(stokes.dof_handler(), cell), face...);
+        phi_values.reinit(cell_of(volume_fraction.dof_handler(), cell), face...);
+        stress_values.reinit(cell_of(stress.dof_handler(), cell), face...);
 
         const FEValuesExtractors::Vector velocities(0);
         const FEValuesExtractors::Scalar pressure_component(2);

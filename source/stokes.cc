@@ -19,6 +19,7 @@
 #include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <viscofilm/dof_cell.h>
 #include <viscofilm/input.h>
 #include <viscofilm/stokes.h>
 
@@ -531,12 +532,7 @@ namespace viscofilm
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
-          const DoFHandler<2>::active_cell_iterator phi_cell(
-            &triangulation,
-            cell->level(),
-            cell->index(),
-            coefficients.volume_fraction_dof_handler);
-          phi_fe_values.reinit(phi_cell);
+          phi_fe_values.reinit(cell_of(*coefficients.volume_fraction_dof_handler, cell));
           phi_fe_values.get_function_values(*coefficients.volume_fraction,
                                             volume_fraction);
           for (unsigned int q = 0; q < n_q_points; ++q)

@@ -8,6 +8,7 @@
 
 #include <deal.II/matrix_free/fe_point_evaluation.h>
 
+#include <viscofilm/dof_cell.h>
 #include <viscofilm/input.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/stress.h>
@@ -55,9 +56,7 @@ namespace viscofilm
             FEValues<2> phi_values(volume_fraction.dof_handler().get_fe(),
                                    Quadrature<2>(unit_points),
                                    update_values);
-            phi_values.reinit(DoFHandler<2>::active_cell_iterator(
-              &cell->get_triangulation(), cell->level(), cell->index(),
-              &volume_fraction.dof_handler()));
+            phi_values.reinit(cell_of(volume_fraction.dof_handler(), cell));
             phi_values.get_function_values(volume_fraction.solution(), phi);
           }
         for (unsigned int q = 0; q < n; ++q)
@@ -297,11 +296,7 @@ namespace viscofilm
       [&](const Triangulation<2>::active_cell_iterator &cell,
           const ArrayView<const Point<2>> &             unit_points,
           const ArrayView<std::array<double, 4>> &      values) {
-        const DoFHandler<2>::active_cell_iterator dof_cell(&triangulation,
-                                                           cell->level(),
-                                                           cell->index(),
-                                                           &dofs);
-        dof_cell->get_dof_values(old, cell_values.begin(), cell_values.end());
+        cell_of(dofs, cell)->get_dof_values(old, cell_values.begin(), cell_values.end());
         conformation.reinit(cell, unit_points);
         conformation.evaluate(cell_values, EvaluationFlags::values);
         for (unsigned int q = 0; q < unit_points.size(); ++q)
@@ -398,8 +393,7 @@ namespace viscofilm
     for_each_node_on_cells([&](const DoFHandler<2>::active_cell_iterator &cell,
                                const Quadrature<2> &,
                                const std::vector<unsigned int> &node_of_support) {
-      stokes_values.reinit(DoFHandler<2>::active_cell_iterator(
-        &triangulation, cell->level(), cell->index(), &stokes.dof_handler()));
+      stokes_values.reinit(cell_of(stokes.dof_handler(), cell));
       stokes_values[velocities].get_function_gradients(stokes.solution(), gradients);
       for (unsigned int k = 0; k < gradients.size(); ++k)
         if (node_of_support[k] != numbers::invalid_unsigned_int)
@@ -424,8 +418,7 @@ namespace viscofilm
     for_each_node_on_cells([&](const DoFHandler<2>::active_cell_iterator &cell,
                                const Quadrature<2> &,
                                const std::vector<unsigned int> &node_of_support) {
-      phi_values.reinit(DoFHandler<2>::active_cell_iterator(
-        &triangulation, cell->level(), cell->index(), &volume_fraction.dof_handler()));
+      phi_values.reinit(cell_of(volume_fraction.dof_handler(), cell));
       phi_values.get_function_values(volume_fraction.solution(), phis);
       for (unsigned int k = 0; k < phis.size(); ++k)
         if (node_of_support[k] != numbers::invalid_unsigned_int)
@@ -504,8 +497,7 @@ namespace viscofilm
           fe_values.reinit(cell);
           fe_values.get_function_values(current, now);
           fe_values.get_function_values(previous, before);
-          phi_values.reinit(DoFHandler<2>::active_cell_iterator(
-            &triangulation, cell->level(), cell->index(), &volume_fraction.dof_handler()));
+          phi_values.reinit(cell_of(volume_fraction.dof_handler(), cell));
           phi_values.get_function_values(volume_fraction.solution(), phi);
           for (unsigned int q = 0; q < now.size(); ++q)
             {
@@ -561,8 +553,7 @@ namespace viscofilm
     const std::vector<double> &                volume_fraction,
     std::vector<SymmetricTensor<2, 2>> &       tau) const
   {
-    quadrature_values->reinit(DoFHandler<2>::active_cell_iterator(
-      &triangulation, cell->level(), cell->index(), &dofs));
+    quadrature_values->reinit(cell_of(dofs, cell));
     std::vector<Vector<double>> c(tau.size(), Vector<double>(3));
     quadrature_values->get_function_values(current, c);
     for (unsigned int q = 0; q < tau.size(); ++q)

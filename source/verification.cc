@@ -2,6 +2,7 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include <viscofilm/dof_cell.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/stress.h>
 #include <viscofilm/verification.h>
@@ -168,10 +169,7 @@ namespace viscofilm
         {
           fe_values.reinit(cell);
           fe_values.get_function_values(stress.solution(), conformation);
-          phi_values.reinit(DoFHandler<2>::active_cell_iterator(&cell->get_triangulation(),
-                                                                cell->level(),
-                                                                cell->index(),
-                                                                &volume_fraction.dof_handler()));
+          phi_values.reinit(cell_of(volume_fraction.dof_handler(), cell));
           phi_values.get_function_values(volume_fraction.solution(), phi);
           exact.vector_value_list(fe_values.get_quadrature_points(), reference);
           for (unsigned int q = 0; q < quadrature.size(); ++q)

@@ -13,6 +13,7 @@
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
+#include <viscofilm/dof_cell.h>
 #include <viscofilm/departure_feet.h>
 #include <viscofilm/input.h>
 #include <viscofilm/stokes.h>
@@ -121,7 +122,7 @@ namespace viscofilm
       {
         // Inflow where the mean u·n is below round-off relative to the
         // velocity scale: a wall with u = 0 up to round-off is none.
-        const double tolerance = 1e-8 * stokes->max_velocity();
+        const double tolerance = inflow_threshold * stokes->max_velocity();
         const QGauss<1>     face_quadrature(3);
         FEFaceValues<2>     stokes_face(stokes->dof_handler().get_fe(),
                                     face_quadrature,
@@ -137,12 +138,7 @@ namespace viscofilm
                   boundary_conditions.boundary(cell->face(f)->boundary_id()).type !=
                     BoundaryConditions::Type::periodic)
                 {
-                  stokes_face.reinit(
-                    DoFHandler<2>::active_cell_iterator(&cell->get_triangulation(),
-                                                        cell->level(),
-                                                        cell->index(),
-                                                        &stokes->dof_handler()),
-                    f);
+                  stokes_face.reinit(cell_of(stokes->dof_handler(), cell), f);
                   stokes_face[velocities].get_function_values(stokes->solution(),
                                                               velocity);
                   double flux = 0;
@@ -251,11 +247,7 @@ namespace viscofilm
           fe_values.get_function_values(current_solution, phi_old);
           if (stokes != nullptr)
             {
-              stokes_values->reinit(DoFHandler<2>::active_cell_iterator(
-                &cell->get_triangulation(),
-                cell->level(),
-                cell->index(),
-                &stokes->dof_handler()));
+              stokes_values->reinit(cell_of(stokes->dof_handler(), cell));
               (*stokes_values)[velocities].get_function_values(stokes->solution(),
                                                                velocity);
             }
@@ -369,11 +361,7 @@ namespace viscofilm
       [&](const Triangulation<2>::active_cell_iterator &cell,
           const ArrayView<const Point<2>> &             unit_points,
           const ArrayView<std::array<double, 3>> &      values) {
-        const DoFHandler<2>::active_cell_iterator dof_cell(&dofs.get_triangulation(),
-                                                           cell->level(),
-                                                           cell->index(),
-                                                           &dofs);
-        dof_cell->get_dof_values(current_solution, cell_values.begin(), cell_values.end());
+        cell_of(dofs, cell)->get_dof_values(current_solution, cell_values.begin(), cell_values.end());
         const auto [low, high] = std::minmax_element(cell_values.begin(), cell_values.end());
         for (unsigned int p = 0; p < unit_points.size(); ++p)
           {
@@ -591,11 +579,7 @@ namespace viscofilm
           if (cell->at_boundary(f))
             {
               phi_face.reinit(cell, f);
-              stokes_face.reinit(DoFHandler<2>::active_cell_iterator(&cell->get_triangulation(),
-                                                                     cell->level(),
-                                                                     cell->index(),
-                                                                     &stokes.dof_handler()),
-                                 f);
+              stokes_face.reinit(cell_of(stokes.dof_handler(), cell), f);
               phi_face.get_function_values(current_solution, phi);
               stokes_face[velocities].get_function_values(stokes.solution(), velocity);
               for (const unsigned int q : phi_face.quadrature_point_indices())

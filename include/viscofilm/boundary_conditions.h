@@ -22,6 +22,10 @@ namespace viscofilm
 {
   using namespace dealii;
 
+  /// Flow enters where u·n < −inflow_threshold · max|u|: a wall whose u·n is
+  /// round-off is no inflow boundary.
+  constexpr double inflow_threshold = 1e-8;
+
   class BoundaryConditions
   {
   public:
