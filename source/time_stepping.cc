@@ -26,6 +26,14 @@ namespace viscofilm
                       "min(Time step, CFL number × Δx / max|u^n|) long (Δx the "
                       "smallest cell edge), and the run ends at the time "
                       "Number of steps × Time step.");
+    prm.declare_entry("Order",
+                      "1",
+                      Patterns::Integer(1, 2),
+                      "Order of accuracy in the time step of the conformation "
+                      "update along the characteristics, the volume fraction's "
+                      "transport and the Res ∂u/∂t term: 1 (the thesis' "
+                      "scheme) or 2 (doc/numerics.md, \"Second order in "
+                      "time\").");
     prm.declare_entry("Picard tolerance",
                       "1e-6",
                       Patterns::Double(0),
@@ -51,6 +59,7 @@ namespace viscofilm
     time_step = prm.get_double("Time step");
     n_steps   = prm.get_integer("Number of steps");
     cfl                   = prm.get_double("CFL number");
+    order                 = prm.get_integer("Order");
     picard_tolerance      = prm.get_double("Picard tolerance");
     max_picard_iterations = prm.get_integer("Maximum Picard iterations");
     prm.leave_subsection();

@@ -28,6 +28,8 @@ namespace viscofilm
     /// > 0: k = min(time_step, cfl Δx / max|u|) each step, up to the end
     /// time n_steps × time_step.
     double       cfl = 0;
+    /// Order of accuracy in k of the stress, φ and inertia updates: 1 or 2.
+    unsigned int order = 1;
 
     /// The Picard loop between Stokes and the stress (MODEL.md §3 step 2c).
     double       picard_tolerance      = 1e-6;
