@@ -7,7 +7,7 @@ VISCOFILM_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 VISCOFILM_BUILD=${VISCOFILM_BUILD:-$VISCOFILM_ROOT/build}
 export VISCOFILM_ROOT VISCOFILM_BUILD
 
-packages=(cmake make g++ libdeal.ii-dev openmpi-bin numdiff
+packages=(cmake make g++ libdeal.ii-dev libpng-dev libtiff-dev openmpi-bin numdiff
           python3 python3-numpy python3-h5py python3-matplotlib)
 missing=()
 for package in "${packages[@]}"; do

@@ -33,9 +33,10 @@ namespace viscofilm
                               "Volume fraction",
                               "0",
                               "Biofilm volume fraction φ at t = 0, in [0, 1] (the "
-                              "thesis: 0.1 inside the biofilm, 0 in water), or one "
+                              "thesis: 0.1 inside the biofilm, 0 in water), one "
                               "of the named profiles " + names +
-                                " (doc/parameters.md).");
+                                " (doc/parameters.md), or image: φ from the "
+                                "subsection Image (doc/images.md).");
     ParsedExpression::declare(prm,
                               "Stress",
                               "0; 0; 0",
@@ -51,19 +52,26 @@ namespace viscofilm
                       "0.03125",
                       Patterns::Double(0),
                       "Time step of the softening, > 0. The thesis: Δx = 1/32.");
+    BiofilmImage::declare_parameters(prm);
     prm.leave_subsection();
   }
 
 
   void
-  InitialConditions::parse_parameters(ParameterHandler &prm)
+  InitialConditions::parse_parameters(ParameterHandler &      prm,
+                                      const std::string &     directory,
+                                      const BoundingBox<dim> &domain)
   {
     prm.enter_subsection("Initial conditions");
     const std::string text   = prm.get("Volume fraction");
     const auto        preset = presets().find(text);
-    volume_fraction.parse(preset != presets().end() ? preset->second : text,
-                          prm.get("Function constants"),
-                          "Initial conditions/Volume fraction");
+    from_image               = (text == "image");
+    if (from_image)
+      image.parse_parameters(prm, directory, domain);
+    else
+      volume_fraction.parse(preset != presets().end() ? preset->second : text,
+                            prm.get("Function constants"),
+                            "Initial conditions/Volume fraction");
     stress.parse(prm.get("Stress"),
                  prm.get("Function constants"),
                  "Initial conditions/Stress");
@@ -72,5 +80,14 @@ namespace viscofilm
     prm.leave_subsection();
     check_input(softening_time_step > 0,
                 "Initial conditions/Softening time step must be > 0, got 0");
+  }
+
+
+  const Function<dim> &
+  InitialConditions::initial_volume_fraction() const
+  {
+    if (from_image)
+      return image.volume_fraction();
+    return volume_fraction.function();
   }
 } // namespace viscofilm

@@ -31,7 +31,8 @@ namespace viscofilm
     time_stepping.parse_parameters(prm);
     model.parse_parameters(prm);
     boundary_conditions.parse_parameters(prm, geometry.boundaries());
-    initial_conditions.parse_parameters(prm);
+    initial_conditions.parse_parameters(
+      prm, directory, BoundingBox<dim>({geometry.lower_left, geometry.upper_right}));
     stokes_solver.parse_parameters(prm);
     stress.parse_parameters(prm);
     departure_feet.parse_parameters(prm);

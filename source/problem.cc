@@ -183,7 +183,7 @@ namespace viscofilm
     // from the input φ, until softening asks for no more cells. Only
     // refinement, so that this ends (at the maximum level at the latest).
     const Function<2> &initial_phi =
-      parameters.initial_conditions.volume_fraction.function();
+      parameters.initial_conditions.initial_volume_fraction();
     const bool adaptive = parameters.mesh_refinement.adaptive;
     for (bool softened = false; !softened;)
       {

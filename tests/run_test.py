@@ -39,6 +39,9 @@ largest value or the sum over the rows: a check against a stated limit,
 whatever the reference says. "file.csv[step>N]:..." checks only the rows
 after step N ([step>0]: after the initial state).
 
+--data FILE (repeatable) copies FILE into the work directory before the run:
+the images a .prm names relative to itself.
+
 Set VISCOFILM_BLESS=1 to write the reference instead of comparing (only after
 checking the output against the analytic answer by hand).
 Only the standard library is used, except h5py in mode hdf5.
@@ -384,10 +387,13 @@ def main():
     parser.add_argument("--resume-set", action="append", default=[])
     parser.add_argument("--exact", action="append", default=[])
     parser.add_argument("--tolerance", type=float, default=0)
+    parser.add_argument("--data", action="append", default=[])
     opts = parser.parse_args()
 
     shutil.rmtree(opts.workdir, ignore_errors=True)
     os.makedirs(opts.workdir)
+    for data in opts.data:  # files the .prm names relative to itself
+        shutil.copy(data, opts.workdir)
     {"run": mode_run, "convergence": mode_convergence, "error": mode_error,
      "restart": mode_restart, "refused": mode_refused, "hdf5": mode_hdf5,
      "fields": mode_fields}[opts.mode](opts, opts.workdir)

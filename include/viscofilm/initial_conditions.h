@@ -3,8 +3,11 @@
 #ifndef viscofilm_initial_conditions_h
 #define viscofilm_initial_conditions_h
 
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <viscofilm/dimension.h>
+#include <viscofilm/image.h>
 #include <viscofilm/input.h>
 
 #include <map>
@@ -19,15 +22,27 @@ namespace viscofilm
   public:
     static void
     declare_parameters(ParameterHandler &prm);
+    /// @p directory: the parameter file's (Image/File); @p domain: the
+    /// mesh's bounding box (the image must cover the biofilm in it).
     void
-    parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &      prm,
+                     const std::string &      directory,
+                     const BoundingBox<dim> & domain);
 
     /// The named profiles (φ = 0.1 inside) and their expressions.
     static const std::map<std::string, std::string> &
     presets();
 
-    /// φ(x, y) at t = 0, before softening.
+    /// φ(x, y) at t = 0, before softening: the expression or the image.
+    const Function<dim> &
+    initial_volume_fraction() const;
+
+    /// φ as an expression (Volume fraction not "image").
     ParsedExpression volume_fraction{1};
+
+    /// Volume fraction = image: φ from the image.
+    bool         from_image = false;
+    BiofilmImage image;
 
     /// τ = (τ_xx, τ_xy, τ_yy)(x, y) at t = 0 (the thesis: 0).
     ParsedExpression stress{3};
