@@ -125,6 +125,10 @@ def main():
     # 16-bit big-endian TIFF, binary (0, 40000).
     tiff(os.path.join(directory, "half_disc_16bit.tif"),
          [draw(100, 50, 0.01, half_disc, (0, 40000))], bit_depth=16, big_endian=True)
+    # A filament thinner than the initial cells, between their nodes: x in
+    # [0.475, 0.495], y < 0.3, on 200 × 100 pixels of 0.005, 8-bit binary.
+    png(os.path.join(directory, "filament.png"),
+        draw(200, 100, 0.005, lambda x, y: 0.475 < x < 0.495 and y < 0.3, (0, 255)))
     # A 3D stack for the unit check: a half-ball of radius 0.25 on the wall
     # z = 0, 20 × 20 pixels of 0.05 per slice, 10 slices, in an 8-bit
     # multi-page TIFF; slice k holds the disc of radius √(R² − z_k²).

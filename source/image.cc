@@ -530,6 +530,13 @@ namespace viscofilm
   }
 
 
+  double
+  BiofilmImage::smallest_pixel() const
+  {
+    return *std::min_element(pixel_size.begin(), pixel_size.end());
+  }
+
+
   const Function<dim> &
   BiofilmImage::volume_fraction() const
   {

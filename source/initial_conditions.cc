@@ -83,6 +83,13 @@ namespace viscofilm
   }
 
 
+  double
+  InitialConditions::input_resolution() const
+  {
+    return from_image ? image.smallest_pixel() : 0.;
+  }
+
+
   const Function<dim> &
   InitialConditions::initial_volume_fraction() const
   {

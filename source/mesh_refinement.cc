@@ -1,6 +1,8 @@
 #include <deal.II/base/quadrature.h>
+#include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
 
 #include <viscofilm/input.h>
 #include <viscofilm/mesh_refinement.h>
@@ -101,7 +103,8 @@ namespace viscofilm
   MeshRefinement::flag_cells(parallel::distributed::Triangulation<2> &triangulation,
                              const VolumeFraction &volume_fraction,
                              const StokesSolver &  stokes,
-                             const bool            coarsen) const
+                             const bool            coarsen,
+                             const InitialInput *  input) const
   {
     // Velocity part: off before the first Stokes solve (u = 0).
     const double  max_velocity = velocity_indicator ? stokes.max_velocity() : 0;
@@ -112,13 +115,24 @@ namespace viscofilm
     const DoFHandler<2> &dofs = volume_fraction.dof_handler();
     const Quadrature<2>  nodes(dofs.get_fe().get_unit_support_points());
     FEValues<2>          fe_values(dofs.get_fe(), nodes, update_values);
-    std::vector<double>  phi(nodes.size());
+    std::vector<double>  phi;
     unsigned int         n_flagged = 0;
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
+          phi.resize(nodes.size());
           fe_values.get_function_values(volume_fraction.solution(), phi);
+          if (input != nullptr)
+            {
+              // A grid of points at most input->spacing apart over the cell.
+              const unsigned int n = std::min<unsigned int>(
+                64, std::ceil(cell->minimum_vertex_distance() / input->spacing));
+              const QIterated<dim> grid(QTrapezoid<1>(), std::max(n, 1u));
+              for (const Point<dim> &unit : grid.get_points())
+                phi.push_back(input->phi.value(
+                  StaticMappingQ1<dim>::mapping.transform_unit_to_real_cell(cell, unit)));
+            }
           const auto [low, high] = std::minmax_element(phi.begin(), phi.end());
           // Each measure relative to its threshold; the largest counts:
           // > 1 refine, < 1/4 coarsen.

@@ -106,13 +106,14 @@ namespace viscofilm
 
 
   bool
-  Problem::refine_mesh(const bool coarsen)
+  Problem::refine_mesh(const bool coarsen, const MeshRefinement::InitialInput *input)
   {
     TimerOutput::Scope t(*computing_timer, "refine mesh");
     if (!parameters.mesh_refinement.flag_cells(triangulation,
                                                volume_fraction,
                                                stokes,
-                                               coarsen))
+                                               coarsen,
+                                               input))
       return false;
     triangulation.prepare_coarsening_and_refinement();
     stokes.prepare_for_refinement();
@@ -184,11 +185,14 @@ namespace viscofilm
     // refinement, so that this ends (at the maximum level at the latest).
     const Function<2> &initial_phi =
       parameters.initial_conditions.initial_volume_fraction();
+    // An image has detail between φ's nodes: refine on its pixels too.
+    const double resolution = parameters.initial_conditions.input_resolution();
+    const MeshRefinement::InitialInput input{initial_phi, resolution};
     const bool adaptive = parameters.mesh_refinement.adaptive;
     for (bool softened = false; !softened;)
       {
         volume_fraction.interpolate(initial_phi);
-        if (adaptive && refine_mesh(false))
+        if (adaptive && refine_mesh(false, resolution > 0 ? &input : nullptr))
           continue;
         {
           TimerOutput::Scope t(*computing_timer, "softening");

@@ -107,6 +107,10 @@ namespace viscofilm
     const Function<dim> &
     volume_fraction() const;
 
+    /// The smallest edge of a pixel.
+    double
+    smallest_pixel() const;
+
     /// φ of a pixel of normalised intensity @p intensity in [0, 1].
     double
     phi_of_intensity(const double intensity) const;

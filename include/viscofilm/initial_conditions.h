@@ -37,6 +37,12 @@ namespace viscofilm
     const Function<dim> &
     initial_volume_fraction() const;
 
+    /// The spacing below which initial_volume_fraction() has no detail:
+    /// the image's smallest pixel edge; 0 for an expression (resolved at
+    /// φ's nodes).
+    double
+    input_resolution() const;
+
     /// φ as an expression (Volume fraction not "image").
     ParsedExpression volume_fraction{1};
 

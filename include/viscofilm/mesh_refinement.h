@@ -3,6 +3,7 @@
 #ifndef viscofilm_mesh_refinement_h
 #define viscofilm_mesh_refinement_h
 
+#include <deal.II/base/function.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <deal.II/distributed/solution_transfer.h>
@@ -12,6 +13,8 @@
 #include <deal.II/dofs/dof_tools.h>
 
 #include <deal.II/lac/affine_constraints.h>
+
+#include <viscofilm/dimension.h>
 
 #include <memory>
 
@@ -32,6 +35,16 @@ namespace viscofilm
     void
     parse_parameters(ParameterHandler &prm, const unsigned int initial_level);
 
+    /// The input φ at t = 0 when it has detail between φ's nodes (an
+    /// image): the φ indicators take its values on a grid of @p spacing
+    /// (the pixel size) in each cell as well, so that a feature thinner
+    /// than a cell refines it.
+    struct InitialInput
+    {
+      const Function<dim> &phi;
+      double               spacing;
+    };
+
     /// Flag for refinement the cells where a chosen indicator exceeds its
     /// threshold: φ's variation across the cell (interface), also φ itself
     /// (biofilm), the velocity error indicator (velocity); for coarsening
@@ -41,7 +54,8 @@ namespace viscofilm
     flag_cells(parallel::distributed::Triangulation<2> &triangulation,
                const VolumeFraction &                   volume_fraction,
                const StokesSolver &                     stokes,
-               const bool                               coarsen) const;
+               const bool                               coarsen,
+               const InitialInput *                     input = nullptr) const;
 
     bool         adaptive  = false;
     unsigned int interval  = 10;

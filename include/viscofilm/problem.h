@@ -64,9 +64,11 @@ namespace viscofilm
     void
     setup_dofs();
     /// Adapt the mesh (MeshRefinement), carrying u, p, c and φ over; false
-    /// if no cell was flagged. Without @p coarsen cells are only refined.
+    /// if no cell was flagged. Without @p coarsen cells are only refined;
+    /// @p input: the initial φ the mesh must resolve between φ's nodes too.
     bool
-    refine_mesh(const bool coarsen = true);
+    refine_mesh(const bool                            coarsen = true,
+                const MeshRefinement::InitialInput *input   = nullptr);
     /// After any change of the mesh: caches that depend on it.
     void
     mesh_changed();
