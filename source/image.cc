@@ -274,7 +274,7 @@ namespace viscofilm
     static_assert(spacedim == 2 || spacedim == 3, "images are 2D or 3D");
     check_input(spacedim == 3 || slices.size() == 1,
                 parameter + " has " + std::to_string(slices.size()) +
-                  " pages; a 2D run needs one image");
+                  " slices (pages or files); a 2D run needs one image");
     check_input(slices.size() >= (spacedim == 3 ? 2 : 1),
                 parameter + ": a 3D run needs at least 2 slices");
     const unsigned int width = slices[0].width, height = slices[0].height;
@@ -366,8 +366,9 @@ namespace viscofilm
                       "an 8- or 16-bit grayscale PNG or TIFF, relative to the "
                       "parameter file's directory. Columns go along x, rows "
                       "along y upwards (the image's top row is the highest). "
-                      "A 3D run reads a multi-page TIFF, one page per slice, "
-                      "lowest first.");
+                      "A 3D run reads a stack of slices along z, lowest "
+                      "first: the pages of a multi-page TIFF or files "
+                      "separated by ';'.");
     prm.declare_entry("Pixel size",
                       "0.01",
                       Patterns::Anything(),
@@ -454,13 +455,19 @@ namespace viscofilm
     check_input(biofilm_phi > 0,
                 section + "Biofilm volume fraction must be in (0, 1], got 0");
 
-    std::string path = file;
-    if (std::filesystem::path(path).is_relative())
-      path = (std::filesystem::path(directory) / path).string();
+    // One file, or a stack of slice files (3D), each relative to the .prm.
+    std::vector<GrayscaleSlice> slices;
+    for (std::string path : Utilities::split_string_list(file, ';'))
+      {
+        if (std::filesystem::path(path).is_relative())
+          path = (std::filesystem::path(directory) / path).string();
+        for (GrayscaleSlice &slice : read_grayscale_slices(path, section + "File"))
+          slices.push_back(std::move(slice));
+      }
     Table<dim, double> pixels = pixel_table<dim>(
-      read_grayscale_slices(path, section + "File"),
+      slices,
       [this](const double intensity) { return phi_of_intensity(intensity); },
-      section + "File \"" + path + "\"");
+      section + "File \"" + file + "\"");
     phi = std::make_unique<ImageVolumeFraction<dim>>(pixels, pixel_size, origin);
 
     // The image must cover the biofilm in the domain: reach down to the wall
