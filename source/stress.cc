@@ -21,6 +21,30 @@ namespace viscofilm
 {
   namespace
   {
+    /// For x = μk: e^{−x}, and ∫_0^1 e^{−xs} (1 − s) ds, ∫_0^1 e^{−xs} s ds, the
+    /// weights of a function linear in s ∈ [0, 1] against e^{−xs}
+    /// ((x − 1 + e^{−x})/x², (1 − (1 + x)e^{−x})/x²; their series for small x,
+    /// where those cancel).
+    std::array<double, 3>
+    exponential_weights(const double x)
+    {
+      if (x >= 0.5)
+        {
+          const double decay = std::exp(-x);
+          return {{decay, (x - 1 + decay) / (x * x), (1 - (1 + x) * decay) / (x * x)}};
+        }
+      // Σ_{n≥2} (−x)^{n−2}/n! and Σ_{n≥2} (n−1)(−x)^{n−2}/n!, to round-off.
+      double at_start = 0, at_end = 0, term = 0.5; // (−x)^{n−2}/n!
+      for (unsigned int n = 2; n < 20; ++n)
+        {
+          at_start += term;
+          at_end += (n - 1) * term;
+          term *= -x / (n + 1);
+        }
+      return {{std::exp(-x), at_start, at_end}};
+    }
+
+
     /// Smallest eigenvalue of the symmetric 2x2 matrix (xx, xy, yy).
     double
     smallest_eigenvalue(const double xx, const double xy, const double yy)
@@ -495,17 +519,6 @@ namespace viscofilm
     const auto cayley = [&identity](const Tensor<2, dim> &kPhi) {
       return invert(identity - 0.5 * kPhi) * (identity + 0.5 * kPhi);
     };
-    // Exact relaxation w c' = β I − α c over @p h: c ← (1 − α g) c + g β I
-    // with g = (1 − e^{−αh/w})/α ∈ [0, 1/α], a convex combination of c and
-    // the relaxed state β/α I (g = h/w for α → 0, 1/α for w = 0).
-    const auto relax = [&identity](const Tensor<2, dim> &  c,
-                                   const Model::Relaxation &r,
-                                   const double             h) {
-      const double g = r.weight == 0 ? 1 / r.alpha :
-                       r.alpha == 0  ? h / r.weight :
-                                       -std::expm1(-r.alpha * h / r.weight) / r.alpha;
-      return (1 - r.alpha * g) * c + g * r.beta * identity;
-    };
 
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
                                               triangulation.get_communicator());
@@ -526,10 +539,28 @@ namespace viscofilm
         SymmetricTensor<2, 2> c = c_first;
         if (order == 2)
           {
+            // Along the characteristic w c' = w (Φc + cΦᵀ) + β I − α c has,
+            // for frozen Φ and μ = α/w, the solution
+            //   c(k) = e^{−μk} E(k) c(y) E(k)ᵀ + (β/w) ∫_0^k e^{−μs} E(s)E(s)ᵀ ds
+            // with E(s) = exp(sΦ). E(k): the Cayley form of kΦ, Φ the mean of
+            // the foot's (t_n) and the node's (t_{n+1}); the integral: E(s)E(s)ᵀ
+            // linear between I and E Eᵀ, integrated exactly against e^{−μs}.
+            // A sum of SPD terms with weights >= 0 (β > 0): SPD; exact in the
+            // stiff limit μk → ∞ (c → β/α I + O(1/μ)), which a Strang
+            // splitting of relaxation and deformation is not.
             const Tensor<2, 2> E_mid =
               cayley(0.5 * k * (Phi + deformation_rate(nodes[i].foot_velocity_gradient)));
-            c = symmetrize(
-              relax(E_mid * relax(c_foot, r, 0.5 * k) * transpose(E_mid), r, 0.5 * k));
+            if (r.weight == 0)
+              c = (r.beta / r.alpha) * unit_symmetric_tensor<dim>();
+            else
+              {
+                const auto [decay, at_start, at_end] =
+                  exponential_weights(r.alpha * k / r.weight);
+                const double source = r.beta * k / r.weight;
+                c = symmetrize(decay * E_mid * c_foot * transpose(E_mid) +
+                               source * at_start * identity +
+                               source * at_end * E_mid * transpose(E_mid));
+              }
             const double G = model.stress_modulus(nodes[i].foot_volume_fraction);
             largest[0] = std::max(largest[0], G * (c - c_first).norm());
             largest[1] = std::max(largest[1],
