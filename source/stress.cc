@@ -21,27 +21,29 @@ namespace viscofilm
 {
   namespace
   {
-    /// For x = μk: e^{−x}, and ∫_0^1 e^{−xs} (1 − s) ds, ∫_0^1 e^{−xs} s ds, the
-    /// weights of a function linear in s ∈ [0, 1] against e^{−xs}
-    /// ((x − 1 + e^{−x})/x², (1 − (1 + x)e^{−x})/x²; their series for small x,
-    /// where those cancel).
+    /// For x = μk >= 0: e^{−x}, and x times the weights of a function linear
+    /// in s ∈ [0, 1] against e^{−xs}: x ∫_0^1 e^{−xs} (1 − s) ds = 1 − (1 −
+    /// e^{−x})/x and x ∫_0^1 e^{−xs} s ds = (1 − e^{−x})/x − e^{−x}, both in
+    /// [0, 1] and finite for x = ∞ (w → 0); their series for small x, where
+    /// the closed forms cancel.
     std::array<double, 3>
     exponential_weights(const double x)
     {
+      const double decay = std::exp(-x);
       if (x >= 0.5)
         {
-          const double decay = std::exp(-x);
-          return {{decay, (x - 1 + decay) / (x * x), (1 - (1 + x) * decay) / (x * x)}};
+          const double mean = -std::expm1(-x) / x; // (1 − e^{−x})/x
+          return {{decay, 1 - mean, mean - decay}};
         }
-      // Σ_{n≥2} (−x)^{n−2}/n! and Σ_{n≥2} (n−1)(−x)^{n−2}/n!, to round-off.
-      double at_start = 0, at_end = 0, term = 0.5; // (−x)^{n−2}/n!
+      // x Σ_{n≥2} (−x)^{n−2}/n! and x Σ_{n≥2} (n−1)(−x)^{n−2}/n!, to round-off.
+      double at_start = 0, at_end = 0, term = 0.5 * x; // x (−x)^{n−2}/n!
       for (unsigned int n = 2; n < 20; ++n)
         {
           at_start += term;
           at_end += (n - 1) * term;
           term *= -x / (n + 1);
         }
-      return {{std::exp(-x), at_start, at_end}};
+      return {{decay, at_start, at_end}};
     }
 
 
@@ -550,17 +552,14 @@ namespace viscofilm
             // splitting of relaxation and deformation is not.
             const Tensor<2, 2> E_mid =
               cayley(0.5 * k * (Phi + deformation_rate(nodes[i].foot_velocity_gradient)));
-            if (r.weight == 0)
-              c = (r.beta / r.alpha) * unit_symmetric_tensor<dim>();
-            else
-              {
-                const auto [decay, at_start, at_end] =
-                  exponential_weights(r.alpha * k / r.weight);
-                const double source = r.beta * k / r.weight;
-                c = symmetrize(decay * E_mid * c_foot * transpose(E_mid) +
-                               source * at_start * identity +
-                               source * at_end * E_mid * transpose(E_mid));
-              }
+            // (βk/w) C(μk) = (β/α) μk C(μk): bounded as w → 0 (α > 0).
+            const auto [decay, at_start, at_end] =
+              r.weight > 0 ? exponential_weights(r.alpha * k / r.weight) :
+                             std::array<double, 3>{{0, 1, 0}};
+            const double relaxed = r.beta / r.alpha;
+            c = symmetrize(decay * E_mid * c_foot * transpose(E_mid) +
+                           relaxed * at_start * identity +
+                           relaxed * at_end * E_mid * transpose(E_mid));
             const double G = model.stress_modulus(nodes[i].foot_volume_fraction);
             largest[0] = std::max(largest[0], G * (c - c_first).norm());
             largest[1] = std::max(largest[1],
