@@ -509,7 +509,7 @@ namespace viscofilm
     std::vector<double>                volume_fraction(n_q_points);
     std::vector<double>                viscosity(n_q_points);
     std::vector<Tensor<1, 2>>          old_velocity(n_q_points);
-    std::vector<Tensor<1, 2>>          older_velocity(n_q_points); // zero unless BDF2
+    std::vector<Tensor<1, dim>>        older_velocity(n_q_points); // zero unless BDF2
     std::vector<Vector<double>>        body_force(n_q_points, Vector<double>(2));
     std::vector<SymmetricTensor<2, 2>> tau(n_q_points);
     std::vector<double>                elastic_viscosity(n_q_points, 0.0);
@@ -735,7 +735,7 @@ namespace viscofilm
     // at the middle of its interval, t_{n+1} − duration/2 (second order).
     const auto at_feet = [&](const double                              duration,
                              const TrilinosWrappers::MPI::BlockVector &values,
-                             std::vector<Tensor<1, 2>> &                 result) {
+                             std::vector<Tensor<1, dim>> &               result) {
       feet.compute(points,
                    cells,
                    dofs,

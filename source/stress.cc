@@ -401,12 +401,12 @@ namespace viscofilm
     // the boundary's volume fraction, as for c there).
     const auto gradients =
       evaluate_velocity(feet.at_feet(), stokes.dof_handler(), stokes.solution());
-    const FiniteElement<2> &phi_fe = volume_fraction.dof_handler().get_fe();
-    FEPointEvaluation<1, 2> phi(StaticMappingQ1<2>::mapping, phi_fe, update_values);
+    const FiniteElement<dim> &phi_fe = volume_fraction.dof_handler().get_fe();
+    FEPointEvaluation<1, dim> phi(StaticMappingQ1<dim>::mapping, phi_fe, update_values);
     std::vector<double>     phi_dofs(phi_fe.n_dofs_per_cell());
     const auto              phis = feet.at_feet().evaluate<1>(
-      [&](const Triangulation<2>::active_cell_iterator &cell,
-          const ArrayView<const Point<2>> &             unit_points,
+      [&](const Triangulation<dim>::active_cell_iterator &cell,
+          const ArrayView<const Point<dim>> &             unit_points,
           const ArrayView<std::array<double, 1>> &      values) {
         cell_of(volume_fraction.dof_handler(), cell)
           ->get_dof_values(volume_fraction.solution(), phi_dofs.begin(), phi_dofs.end());
@@ -547,10 +547,10 @@ namespace viscofilm
             // with E(s) = exp(sΦ). E(k): the Cayley form of kΦ, Φ the mean of
             // the foot's (t_n) and the node's (t_{n+1}); the integral: E(s)E(s)ᵀ
             // linear between I and E Eᵀ, integrated exactly against e^{−μs}.
-            // A sum of SPD terms with weights >= 0 (β > 0): SPD; exact in the
-            // stiff limit μk → ∞ (c → β/α I + O(1/μ)), which a Strang
-            // splitting of relaxation and deformation is not.
-            const Tensor<2, 2> E_mid =
+            // A sum of SPD terms with weights >= 0 (β > 0): SPD; for μk → ∞ it
+            // tends to the quasi-steady c = β/α (I + (Φ + Φᵀ)/μ), which a
+            // Strang splitting of relaxation and deformation misses.
+            const Tensor<2, dim> E_mid =
               cayley(0.5 * k * (Phi + deformation_rate(nodes[i].foot_velocity_gradient)));
             // (βk/w) C(μk) = (β/α) μk C(μk): bounded as w → 0 (α > 0).
             const auto [decay, at_start, at_end] =

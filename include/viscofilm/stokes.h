@@ -265,7 +265,7 @@ namespace viscofilm
     /// the assembly that built the matrix (Implicit elastic viscosity).
     std::vector<double> elastic_viscosity_cache;
     std::vector<Tensor<1, 2>>          old_velocity_at_feet; // per owned cell and q
-    std::vector<Tensor<1, 2>>          previous_velocity_at_feet; // u^{n-1}, BDF2
+    std::vector<Tensor<1, dim>>        previous_velocity_at_feet; // u^{n-1}, BDF2
 
     std::unique_ptr<DataPostprocessor<2>> flow_postprocessor;
     SolutionCarrier<TrilinosWrappers::MPI::BlockVector> carrier;
