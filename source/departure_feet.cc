@@ -273,6 +273,8 @@ namespace viscofilm
     return result;
   }
 
+  template std::vector<std::array<double, 1>>
+  PointEvaluator::evaluate<1>(const CellEvaluation<1> &) const;
   template std::vector<std::array<double, 3>>
   PointEvaluator::evaluate<3>(const CellEvaluation<3> &) const;
   template std::vector<std::array<double, 4>>

@@ -28,14 +28,16 @@ namespace viscofilm
     , stokes(triangulation,
              parameters.stokes_solver,
              parameters.model,
-             parameters.boundary_conditions)
+             parameters.boundary_conditions,
+             parameters.time_stepping.order)
     , volume_fraction(triangulation,
                       parameters.stabilization,
                       parameters.boundary_conditions)
     , stress(triangulation,
              parameters.stress,
              parameters.model,
-             parameters.boundary_conditions)
+             parameters.boundary_conditions,
+             parameters.time_stepping.order)
     , departure_feet(parameters.departure_feet, triangulation)
     , loads(parameters.detachment,
             parameters.model,
@@ -148,7 +150,7 @@ namespace viscofilm
     stokes.checkpoint_written();
     stress.checkpoint_written();
     volume_fraction.checkpoint_written();
-    checkpoint.commit({step, time, output.snapshots()}, prm);
+    checkpoint.commit({step, time, stokes.previous_time_step(), output.snapshots()}, prm);
   }
 
 
@@ -163,6 +165,7 @@ namespace viscofilm
     }
     setup_dofs();
     stokes.finish_refinement();
+    stokes.set_previous_time_step(state.previous_time_step);
     stress.finish_refinement();
     volume_fraction.finish_refinement();
     mesh_changed();
@@ -210,6 +213,17 @@ namespace viscofilm
     stress.set_initial_conditions(parameters.initial_conditions.stress.function(),
                                   volume_fraction);
     stokes.invalidate_matrix();
+    // Order 2 with Res = 0: u^0 is the flow of the initial state and the
+    // boundary data at t = 0 (the solver's u = 0 is none: the first step's
+    // feet and its rate of deformation at t_0 need it). With Res > 0, u = 0
+    // is the initial condition.
+    if (parameters.time_stepping.order == 2 && parameters.model.density == 0)
+      {
+        time_step = parameters.time_stepping.time_step; // enters no term at Res = 0
+        solve_stokes(0);
+        stokes.advance_time();
+        stokes.invalidate_matrix();
+      }
   }
 
 
@@ -252,7 +266,7 @@ namespace viscofilm
     {
       TimerOutput::Scope t(*computing_timer, "departure feet");
       if (viscoelastic)
-        stress.trace_back(departure_feet, stokes, time - k, k); // c^n at t_n
+        stress.trace_back(departure_feet, stokes, volume_fraction, time - k, k); // c^n at t_n
       stokes.trace_back(departure_feet, k);
     }
 

@@ -339,7 +339,8 @@ namespace viscofilm
     const parallel::distributed::Triangulation<2> &triangulation,
     const Parameters &                             parameters,
     const Model &                                  model,
-    const BoundaryConditions &                     boundary_conditions)
+    const BoundaryConditions &                     boundary_conditions,
+    const unsigned int                             order)
     : triangulation(triangulation)
     , parameters(parameters)
     , model(model)
@@ -347,6 +348,7 @@ namespace viscofilm
     , mpi_communicator(triangulation.get_communicator())
     , fe(FE_Q<2>(2), 2, *pressure_element(parameters.pressure_element), 1)
     , dofs(triangulation)
+    , order(order)
     , flow_postprocessor(std::make_unique<FlowPostprocessor>())
   {}
 
@@ -418,6 +420,7 @@ namespace viscofilm
     system_rhs.reinit(owned_partitioning, mpi_communicator);
     current_solution.reinit(owned_partitioning, relevant_partitioning, mpi_communicator);
     old_solution.reinit(owned_partitioning, relevant_partitioning, mpi_communicator);
+    older_solution.reinit(owned_partitioning, relevant_partitioning, mpi_communicator);
     invalidate_matrix();
   }
 
@@ -506,6 +509,7 @@ namespace viscofilm
     std::vector<double>                volume_fraction(n_q_points);
     std::vector<double>                viscosity(n_q_points);
     std::vector<Tensor<1, 2>>          old_velocity(n_q_points);
+    std::vector<Tensor<1, dim>>        older_velocity(n_q_points); // zero unless BDF2
     std::vector<Vector<double>>        body_force(n_q_points, Vector<double>(2));
     std::vector<SymmetricTensor<2, 2>> tau(n_q_points);
     std::vector<double>                elastic_viscosity(n_q_points, 0.0);
@@ -524,8 +528,17 @@ namespace viscofilm
     std::vector<double>                div_phi_u(dofs_per_cell);
     std::vector<double>                phi_p(dofs_per_cell);
 
-    // Res ∂u/∂t (ρ ∂u/∂t in SI) by implicit Euler: (Res/k)(u − u^n, v).
-    const double mass_coefficient = model.density / coefficients.time_step;
+    // Res ∂u/∂t (ρ ∂u/∂t in SI) by implicit Euler, (Res/k)(u − u^n, v), or
+    // with u^{n-1} by BDF2 with variable steps, ω = k_n/k_{n-1}:
+    // (Res/k)((1+2ω)/(1+ω) u − (1+ω) u^n + ω²/(1+ω) u^{n-1}, v).
+    const bool   bdf2  = !previous_velocity_at_feet.empty();
+    const double omega = bdf2 ? coefficients.time_step / previous_step : 0;
+    const double mass_coefficient =
+      model.density / coefficients.time_step * (bdf2 ? (1 + 2 * omega) / (1 + omega) : 1);
+    const double old_coefficient =
+      model.density / coefficients.time_step * (bdf2 ? 1 + omega : 1);
+    const double older_coefficient =
+      model.density / coefficients.time_step * omega * omega / (1 + omega);
     coefficients.body_force->set_time(coefficients.time);
 
     for (const auto &cell : dofs.active_cell_iterators())
@@ -561,8 +574,12 @@ namespace viscofilm
             }
 
           if (use_feet)
-            for (unsigned int q = 0; q < n_q_points; ++q)
-              old_velocity[q] = old_velocity_at_feet[foot++];
+            for (unsigned int q = 0; q < n_q_points; ++q, ++foot)
+              {
+                old_velocity[q] = old_velocity_at_feet[foot];
+                if (bdf2)
+                  older_velocity[q] = previous_velocity_at_feet[foot];
+              }
           else
             fe_values[velocities].get_function_values(old_solution, old_velocity);
           coefficients.body_force->vector_value_list(
@@ -595,7 +612,8 @@ namespace viscofilm
               const double       JxW = fe_values.JxW(q);
               const Tensor<1, 2> force({body_force[q][0], body_force[q][1]});
               const Tensor<1, 2> rhs_vector =
-                mass_coefficient * old_velocity[q] + force;
+                old_coefficient * old_velocity[q] + force -
+                older_coefficient * older_velocity[q];
               // s(φ) τ: φ τ in the thesis (eq. 2.34), τ for phases.
               // With the implicit elastic viscosity η_e in the matrix, its
               // explicit twin 2 η_e D(u^l) joins s τ on the right.
@@ -694,7 +712,9 @@ namespace viscofilm
   void
   StokesSolver::trace_back(DepartureFeet &feet, const double time_step)
   {
+    step_length = time_step;
     old_velocity_at_feet.clear();
+    previous_velocity_at_feet.clear();
     if (model.density == 0)
       return;
     FEValues<2> fe_values(fe, quadrature(), update_quadrature_points);
@@ -710,9 +730,45 @@ namespace viscofilm
               cells.push_back(cell);
             }
         }
-    feet.compute(points, cells, dofs, old_solution, time_step);
-    for (const auto &value : evaluate_velocity(feet.at_feet(), dofs, old_solution))
-      old_velocity_at_feet.emplace_back(Tensor<1, 2>({value[0], value[1]}));
+    // Order 1: feet by u^n. Order 2: u^n at the feet one step back and, for
+    // BDF2, u^{n-1} at the feet two steps back, each traced with the velocity
+    // at the middle of its interval, t_{n+1} − duration/2 (second order).
+    const auto at_feet = [&](const double                              duration,
+                             const TrilinosWrappers::MPI::BlockVector &values,
+                             std::vector<Tensor<1, dim>> &               result) {
+      feet.compute(points,
+                   cells,
+                   dofs,
+                   order == 2 ? extrapolated_solution(time_step - 0.5 * duration) :
+                                old_solution,
+                   duration);
+      for (const auto &value : evaluate_velocity(feet.at_feet(), dofs, values))
+        result.emplace_back(Tensor<1, 2>({value[0], value[1]}));
+    };
+    at_feet(time_step, old_solution, old_velocity_at_feet);
+    if (order == 2 && previous_step > 0)
+      at_feet(time_step + previous_step, older_solution, previous_velocity_at_feet);
+  }
+
+
+  TrilinosWrappers::MPI::BlockVector
+  StokesSolver::extrapolated_solution(const double offset) const
+  {
+    TrilinosWrappers::MPI::BlockVector velocity = old_solution;
+    if (previous_step > 0)
+      {
+        // u(t_n + offset) ≈ u^n + θ (u^n − u^{n-1}), θ = offset / k_{n-1}.
+        const double theta = offset / previous_step;
+        TrilinosWrappers::MPI::BlockVector distributed(owned_partitioning,
+                                                       mpi_communicator);
+        distributed = old_solution;
+        distributed *= 1 + theta;
+        TrilinosWrappers::MPI::BlockVector older(owned_partitioning, mpi_communicator);
+        older = older_solution;
+        distributed.add(-theta, older);
+        velocity = distributed;
+      }
+    return velocity;
   }
 
 
@@ -894,6 +950,8 @@ namespace viscofilm
   StokesSolver::prepare_for_refinement()
   {
     carrier.prepare(dofs, current_solution);
+    if (order == 2)
+      previous_carrier.prepare(dofs, older_solution);
   }
 
 
@@ -906,6 +964,11 @@ namespace viscofilm
     carrier.finish(dofs, distributed);
     current_solution = distributed;
     old_solution     = distributed;
+    if (order == 2)
+      {
+        previous_carrier.finish(dofs, distributed);
+        older_solution = distributed;
+      }
   }
 
 
@@ -913,6 +976,8 @@ namespace viscofilm
   StokesSolver::prepare_for_checkpoint()
   {
     carrier.prepare_checkpoint(dofs, current_solution);
+    if (order == 2)
+      previous_carrier.prepare_checkpoint(dofs, older_solution);
   }
 
 
@@ -920,13 +985,40 @@ namespace viscofilm
   StokesSolver::checkpoint_written()
   {
     carrier.release();
+    previous_carrier.release();
   }
 
 
   void
   StokesSolver::advance_time()
   {
+    if (order == 2)
+      {
+        older_solution = old_solution;
+        previous_step  = step_length;
+      }
     old_solution = current_solution;
+  }
+
+
+  const TrilinosWrappers::MPI::BlockVector &
+  StokesSolver::previous_solution() const
+  {
+    return older_solution;
+  }
+
+
+  double
+  StokesSolver::previous_time_step() const
+  {
+    return previous_step;
+  }
+
+
+  void
+  StokesSolver::set_previous_time_step(const double time_step)
+  {
+    previous_step = time_step;
   }
 
 

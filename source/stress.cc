@@ -21,6 +21,32 @@ namespace viscofilm
 {
   namespace
   {
+    /// For x = μk >= 0: e^{−x}, and x times the weights of a function linear
+    /// in s ∈ [0, 1] against e^{−xs}: x ∫_0^1 e^{−xs} (1 − s) ds = 1 − (1 −
+    /// e^{−x})/x and x ∫_0^1 e^{−xs} s ds = (1 − e^{−x})/x − e^{−x}, both in
+    /// [0, 1] and finite for x = ∞ (w → 0); their series for small x, where
+    /// the closed forms cancel.
+    std::array<double, 3>
+    exponential_weights(const double x)
+    {
+      const double decay = std::exp(-x);
+      if (x >= 0.5)
+        {
+          const double mean = -std::expm1(-x) / x; // (1 − e^{−x})/x
+          return {{decay, 1 - mean, mean - decay}};
+        }
+      // x Σ_{n≥2} (−x)^{n−2}/n! and x Σ_{n≥2} (n−1)(−x)^{n−2}/n!, to round-off.
+      double at_start = 0, at_end = 0, term = 0.5 * x; // x (−x)^{n−2}/n!
+      for (unsigned int n = 2; n < 20; ++n)
+        {
+          at_start += term;
+          at_end += (n - 1) * term;
+          term *= -x / (n + 1);
+        }
+      return {{decay, at_start, at_end}};
+    }
+
+
     /// Smallest eigenvalue of the symmetric 2x2 matrix (xx, xy, yy).
     double
     smallest_eigenvalue(const double xx, const double xy, const double yy)
@@ -146,11 +172,13 @@ namespace viscofilm
     const parallel::distributed::Triangulation<2> &triangulation,
     const Parameters &                             parameters,
     const Model &                                  model,
-    const BoundaryConditions &                     boundary_conditions)
+    const BoundaryConditions &                     boundary_conditions,
+    const unsigned int                             order)
     : triangulation(triangulation)
     , parameters(parameters)
     , model(model)
     , boundary_conditions(boundary_conditions)
+    , order(order)
     , fe(parameters.discontinuous ?
            static_cast<const FiniteElement<2> &>(FE_DGQ<2>(2)) :
            static_cast<const FiniteElement<2> &>(FE_Q<2>(2)),
@@ -270,10 +298,11 @@ namespace viscofilm
 
 
   void
-  ElasticStress::trace_back(DepartureFeet &     feet,
-                            const StokesSolver &stokes,
-                            const double        time,
-                            const double        time_step)
+  ElasticStress::trace_back(DepartureFeet &       feet,
+                            const StokesSolver &  stokes,
+                            const VolumeFraction &volume_fraction,
+                            const double          time,
+                            const double          time_step)
   {
     std::vector<Point<2>>                               points(nodes.size());
     std::vector<Triangulation<2>::active_cell_iterator> cells(nodes.size());
@@ -282,7 +311,13 @@ namespace viscofilm
         points[i] = nodes[i].position;
         cells[i]  = nodes[i].cell;
       }
-    feet.compute(points, cells, stokes.dof_handler(), stokes.solution(), time_step);
+    // Order 2: the implicit midpoint rule with u at t_{n+1/2}.
+    feet.compute(points,
+                 cells,
+                 stokes.dof_handler(),
+                 order == 2 ? stokes.extrapolated_solution(0.5 * time_step) :
+                              stokes.solution(),
+                 time_step);
 
     // c^n at the feet, on whichever rank owns them.
     const MPI_Comm     comm      = triangulation.get_communicator();
@@ -352,6 +387,45 @@ namespace viscofilm
       }
     remote_feet      = Utilities::MPI::sum(remote, comm);
     positivity_fixes = Utilities::MPI::sum(fixes, comm);
+    if (order == 2)
+      at_feet_for_second_order(feet, stokes, volume_fraction);
+  }
+
+
+  void
+  ElasticStress::at_feet_for_second_order(const DepartureFeet &   feet,
+                                          const StokesSolver &  stokes,
+                                          const VolumeFraction &volume_fraction)
+  {
+    // ∇u^n (the deformation's rate at t_n) and φ^n at the feet (inflow feet:
+    // the boundary's volume fraction, as for c there).
+    const auto gradients =
+      evaluate_velocity(feet.at_feet(), stokes.dof_handler(), stokes.solution());
+    const FiniteElement<dim> &phi_fe = volume_fraction.dof_handler().get_fe();
+    FEPointEvaluation<1, dim> phi(StaticMappingQ1<dim>::mapping, phi_fe, update_values);
+    std::vector<double>     phi_dofs(phi_fe.n_dofs_per_cell());
+    const auto              phis = feet.at_feet().evaluate<1>(
+      [&](const Triangulation<dim>::active_cell_iterator &cell,
+          const ArrayView<const Point<dim>> &             unit_points,
+          const ArrayView<std::array<double, 1>> &      values) {
+        cell_of(volume_fraction.dof_handler(), cell)
+          ->get_dof_values(volume_fraction.solution(), phi_dofs.begin(), phi_dofs.end());
+        phi.reinit(cell, unit_points);
+        phi.evaluate(phi_dofs, EvaluationFlags::values);
+        for (unsigned int q = 0; q < unit_points.size(); ++q)
+          values[q][0] = phi.get_value(q);
+      });
+    const std::vector<types::boundary_id> &inflow = feet.inflow_boundaries();
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          for (unsigned int e = 0; e < dim; ++e)
+            nodes[i].foot_velocity_gradient[d][e] = gradients[i][dim + dim * d + e];
+        nodes[i].foot_volume_fraction =
+          inflow[i] != numbers::invalid_boundary_id ?
+            boundary_conditions.boundary(inflow[i]).volume_fraction :
+            phis[i][0];
+      }
   }
 
 
@@ -439,30 +513,68 @@ namespace viscofilm
     const double a     = model.slip_parameter;
     const double k     = time_step;
     const Tensor<2, 2> identity = unit_symmetric_tensor<2>();
+    // Φ = (a+1)/2 ∇u + (a−1)/2 ∇uᵀ (eq. 3.41); the Cayley transform of kΦ,
+    // (I − kΦ/2)^{-1}(I + kΦ/2), is orthogonal for a skew kΦ.
+    const auto deformation_rate = [a](const Tensor<2, dim> &L) {
+      return 0.5 * (a + 1) * L + 0.5 * (a - 1) * transpose(L);
+    };
+    const auto cayley = [&identity](const Tensor<2, dim> &kPhi) {
+      return invert(identity - 0.5 * kPhi) * (identity + 0.5 * kPhi);
+    };
 
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
                                               triangulation.get_communicator());
+    double largest[3] = {0, 0, 0}; // ‖τ₂ − τ₁‖, ‖τ₂‖, G |c_rest| (Order 2)
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
-        // Φ = (a+1)/2 ∇u + (a−1)/2 ∇uᵀ; E = (I − kΦ)^{-1} (eq. 3.41-3.42)
-        // or its Cayley form.
-        const Tensor<2, 2> &L   = velocity_gradient[i];
-        const Tensor<2, 2>  Phi = 0.5 * (a + 1) * L + 0.5 * (a - 1) * transpose(L);
-        const Tensor<2, 2>  E =
-          parameters.cayley ?
-            invert(identity - 0.5 * k * Phi) * (identity + 0.5 * k * Phi) :
-            invert(identity - k * Phi);
-        const Model::Relaxation r = model.relaxation(phi[i]);
+        // E = (I − kΦ)^{-1} (eq. 3.42) or its Cayley form.
+        const Tensor<2, 2> Phi = deformation_rate(velocity_gradient[i]);
+        const Tensor<2, 2> E =
+          parameters.cayley ? cayley(k * Phi) : invert(identity - k * Phi);
+        const Model::Relaxation r =
+          model.relaxation(order == 2 ? nodes[i].foot_volume_fraction : phi[i]);
         const Tensor<2, 2>      c_foot(nodes[i].foot_conformation);
         // c^{n+1} = (w E c(y) Eᵀ + kβ I) / (w + kα)   (thesis: w = φ, eq. 3.44)
-        const SymmetricTensor<2, 2> c =
+        const SymmetricTensor<2, 2> c_first =
           symmetrize((r.weight * E * c_foot * transpose(E) + k * r.beta * identity) /
                      (r.weight + k * r.alpha));
+        SymmetricTensor<2, 2> c = c_first;
+        if (order == 2)
+          {
+            // Along the characteristic w c' = w (Φc + cΦᵀ) + β I − α c has,
+            // for frozen Φ and μ = α/w, the solution
+            //   c(k) = e^{−μk} E(k) c(y) E(k)ᵀ + (β/w) ∫_0^k e^{−μs} E(s)E(s)ᵀ ds
+            // with E(s) = exp(sΦ). E(k): the Cayley form of kΦ, Φ the mean of
+            // the foot's (t_n) and the node's (t_{n+1}); the integral: E(s)E(s)ᵀ
+            // linear between I and E Eᵀ, integrated exactly against e^{−μs}.
+            // A sum of SPD terms with weights >= 0 (β > 0): SPD; for μk → ∞ it
+            // tends to the quasi-steady c = β/α (I + (Φ + Φᵀ)/μ), which a
+            // Strang splitting of relaxation and deformation misses.
+            const Tensor<2, dim> E_mid =
+              cayley(0.5 * k * (Phi + deformation_rate(nodes[i].foot_velocity_gradient)));
+            // (βk/w) C(μk) = (β/α) μk C(μk): bounded as w → 0 (α > 0).
+            const auto [decay, at_start, at_end] =
+              r.weight > 0 ? exponential_weights(r.alpha * k / r.weight) :
+                             std::array<double, 3>{{0, 1, 0}};
+            const double relaxed = r.beta / r.alpha;
+            c = symmetrize(decay * E_mid * c_foot * transpose(E_mid) +
+                           relaxed * at_start * identity +
+                           relaxed * at_end * E_mid * transpose(E_mid));
+            const double G = model.stress_modulus(nodes[i].foot_volume_fraction);
+            largest[0] = std::max(largest[0], G * (c - c_first).norm());
+            largest[1] = std::max(largest[1],
+                                  G * (c - model.relaxed_conformation() *
+                                             unit_symmetric_tensor<dim>())
+                                        .norm());
+            largest[2] = std::max(largest[2], G * std::abs(model.relaxed_conformation()));
+          }
         distributed[nodes[i].dofs[0]] = c[0][0];
         distributed[nodes[i].dofs[1]] = c[0][1];
         distributed[nodes[i].dofs[2]] = c[1][1];
       }
     distributed.compress(VectorOperation::insert);
+    Utilities::MPI::max(largest, triangulation.get_communicator(), largest);
+    step_error = largest[0] > 0 ? largest[0] / (largest[1] + largest[2]) : 0;
     // A continuous c is continuous at hanging nodes too, except where the
     // repair below lifts a hanging node (by the repair's size, counted).
     hanging_node_constraints.distribute(distributed);
@@ -592,6 +704,20 @@ namespace viscofilm
   ElasticStress::checkpoint_written()
   {
     carrier.release();
+  }
+
+
+  double
+  ElasticStress::error_estimate() const
+  {
+    return step_error;
+  }
+
+
+  void
+  ElasticStress::restore_old()
+  {
+    current = old;
   }
 
 

@@ -33,6 +33,8 @@ namespace viscofilm
     {
       unsigned int           step      = 0;
       double                 time      = 0;
+      /// k_{n-1} of StokesSolver's u^{n-1} (Time stepping/Order = 2), or 0.
+      double                 previous_time_step = 0;
       std::vector<XDMFEntry> snapshots;
     };
 

@@ -109,10 +109,13 @@ namespace viscofilm
       ElasticStress                   elastic_stress;
     };
 
+    /// @p order: Time stepping/Order (2: BDF2 for Res ∂u/∂t, and u^{n-1}
+    /// is kept for it and for the extrapolated velocity of the feet).
     StokesSolver(const parallel::distributed::Triangulation<2> &triangulation,
                  const Parameters &                             parameters,
                  const Model &                                  model,
-                 const BoundaryConditions &                     boundary_conditions);
+                 const BoundaryConditions &                     boundary_conditions,
+                 const unsigned int                             order);
 
     /// Distribute dofs, build sparsity patterns, zero the solution.
     void
@@ -128,9 +131,18 @@ namespace viscofilm
     quadrature() const;
 
     /// u^n at the departure feet of the quadrature points, for the term
-    /// (Res/k)(u^n(y), v) of MODEL.md §3 step 2a. Skipped when Res = 0.
+    /// (Res/k)(u^n(y), v) of MODEL.md §3 step 2a, and with Order = 2 u^{n-1}
+    /// at the feet over two steps (BDF2). Skipped when Res = 0. Records
+    /// @p time_step as the length k_n of the step.
     void
     trace_back(DepartureFeet &feet, const double time_step);
+
+    /// The solution at t_n + @p offset extrapolated linearly from u^{n-1} and
+    /// u^n, u^n while there is no u^{n-1} (Order = 1, the first step); the
+    /// velocity of second-order feet at the middle of their interval.
+    /// Ghosted.
+    TrilinosWrappers::MPI::BlockVector
+    extrapolated_solution(const double offset) const;
 
     /// Assemble the right-hand side (and the matrix if invalidated).
     void
@@ -166,6 +178,19 @@ namespace viscofilm
     /// The current solution (u, v, p) with ghost values.
     const TrilinosWrappers::MPI::BlockVector &
     solution() const;
+
+    /// u^{n-1} with ghost values (Order = 2; kept through mesh changes and
+    /// checkpoints like u^n); valid while previous_time_step() > 0.
+    const TrilinosWrappers::MPI::BlockVector &
+    previous_solution() const;
+
+    /// k_{n-1} = t_n − t_{n-1}, or 0 when there is no u^{n-1}.
+    double
+    previous_time_step() const;
+
+    /// After a resume: the k_{n-1} the checkpoint recorded.
+    void
+    set_previous_time_step(const double time_step);
 
     types::global_dof_index
     n_dofs() const;
@@ -232,13 +257,19 @@ namespace viscofilm
     TrilinosWrappers::MPI::BlockVector system_rhs;
     TrilinosWrappers::MPI::BlockVector current_solution; // ghosted
     TrilinosWrappers::MPI::BlockVector old_solution;     // ghosted, u^n
+    TrilinosWrappers::MPI::BlockVector older_solution;   // ghosted, u^{n-1} (Order = 2)
+    const unsigned int                 order;
+    double                             step_length   = 0; // k_n, from trace_back()
+    double                             previous_step = 0; // k_{n-1}; 0: no u^{n-1}
     /// Model::elastic_viscosity at each owned cell's quadrature points, from
     /// the assembly that built the matrix (Implicit elastic viscosity).
     std::vector<double> elastic_viscosity_cache;
     std::vector<Tensor<1, 2>>          old_velocity_at_feet; // per owned cell and q
+    std::vector<Tensor<1, dim>>        previous_velocity_at_feet; // u^{n-1}, BDF2
 
     std::unique_ptr<DataPostprocessor<2>> flow_postprocessor;
     SolutionCarrier<TrilinosWrappers::MPI::BlockVector> carrier;
+    SolutionCarrier<TrilinosWrappers::MPI::BlockVector> previous_carrier; // Order = 2
 
     bool matrix_is_current = false;
     bool preconditioner_is_current = false;

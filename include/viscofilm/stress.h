@@ -63,10 +63,13 @@ namespace viscofilm
       double positivity_floor = 1e-6;
     };
 
+    /// @p order: Time stepping/Order (1: the thesis' update, eq. 3.44; 2:
+    /// the Strang-split update of update()).
     ElasticStress(const parallel::distributed::Triangulation<2> &triangulation,
                   const Parameters &                             parameters,
                   const Model &                                  model,
-                  const BoundaryConditions &boundary_conditions);
+                  const BoundaryConditions &boundary_conditions,
+                  const unsigned int        order);
 
     /// Distribute dofs and list the stress nodes; @p quadrature is the one
     /// the Stokes assembly asks τ at.
@@ -82,18 +85,41 @@ namespace viscofilm
     /// MODEL.md §3 step 1: the nodes' departure feet from u^n and c^n
     /// there; a foot on an inflow boundary takes that boundary's Stress at
     /// the cut and @p time (t_n, the time of the other feet's values).
+    /// Order = 2: the feet follow the velocity extrapolated to t_{n+1/2}
+    /// (StokesSolver::midpoint_velocity), and ∇u^n and φ^n are kept at the
+    /// feet too.
     void
-    trace_back(DepartureFeet &     feet,
-               const StokesSolver & stokes,
-               const double         time,
-               const double         time_step);
+    trace_back(DepartureFeet &       feet,
+               const StokesSolver &  stokes,
+               const VolumeFraction &volume_fraction,
+               const double          time,
+               const double          time_step);
 
     /// MODEL.md §3 step 2b: c^{n+1} at every node from the current Stokes
     /// iterate, φ^n and c^n at the feet (closed form, eq. 3.40-3.44).
     /// Returns ‖τ − τ_prev‖_L2 / ‖τ‖_L2 from the previous iterate, the
     /// Picard criterion on the stress.
+    ///
+    /// Order = 2: Strang splitting along the characteristic, each part
+    /// keeping c symmetric positive definite: half a step of exact
+    /// relaxation (a convex combination of c and the relaxed state), the
+    /// deformation E c Eᵀ with the Cayley E of Φ averaged between the foot
+    /// (∇u^n) and the node (∇u^{n+1}), half a step of relaxation; w, α, β
+    /// of φ^n at the foot (φ is constant along the characteristic).
     double
     update(const StokesSolver &stokes, const VolumeFraction &volume_fraction, const double time_step);
+
+    /// Order = 2, after update(): the local error of the step, max over the
+    /// nodes of ‖τ₂ − τ₁‖_F, τ₁ from the first-order update (eq. 3.44, with
+    /// the same feet), divided by max‖τ₂‖_F + max G |c_rest| (the stress
+    /// and the elastic modulus ηp/(aλ): a relaxed stress still has a
+    /// scale). Dimensionless. 0 with Order = 1.
+    double
+    error_estimate() const;
+
+    /// Reject the step: c := c^n.
+    void
+    restore_old();
 
     /// τ at the quadrature points of @p cell (the Stokes right-hand side),
     /// given φ there; the flow sees Model::stress_coupling(φ) τ.
@@ -169,6 +195,8 @@ namespace viscofilm
       Triangulation<2>::active_cell_iterator  cell;
       std::array<types::global_dof_index, 3>  dofs; // c_xx, c_xy, c_yy
       SymmetricTensor<2, 2>                   foot_conformation;
+      Tensor<2, dim>                          foot_velocity_gradient; // Order = 2
+      double                                  foot_volume_fraction = 0; // Order = 2
     };
 
     /// ‖τ − τ(@p previous)‖_L2 / ‖τ‖_L2 (Frobenius norms) for the current c.
@@ -188,6 +216,12 @@ namespace viscofilm
     void
     for_each_node_on_cells(const CellFunction &on_cell) const;
 
+    /// Order = 2: ∇u^n and φ^n at the feet of the last compute() of @p feet.
+    void
+    at_feet_for_second_order(const DepartureFeet &   feet,
+                             const StokesSolver &  stokes,
+                             const VolumeFraction &volume_fraction);
+
     /// ∇u at every node, averaged over the node's cells.
     std::vector<Tensor<2, dim>>
     nodal_velocity_gradient(const StokesSolver &stokes) const;
@@ -200,6 +234,7 @@ namespace viscofilm
     const Parameters &                             parameters;
     const Model &                                  model;
     const BoundaryConditions &boundary_conditions;
+    const unsigned int        order;
 
     const FESystem<2>             fe;
     DoFHandler<2>                 dofs;
@@ -220,6 +255,7 @@ namespace viscofilm
     unsigned int                               remote_feet      = 0;
     unsigned int                               transfer_repairs   = 0;
     unsigned int                               constraint_repairs = 0;
+    double                                     step_error         = 0;
   };
 } // namespace viscofilm
 
