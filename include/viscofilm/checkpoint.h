@@ -34,6 +34,7 @@ namespace viscofilm
       unsigned int           step      = 0;
       double                 time      = 0;
       std::vector<XDMFEntry> snapshots;
+      double                 detached_mass = 0; // Detachment's total
     };
 
     Checkpoint(const Parameters &parameters,
