@@ -122,8 +122,10 @@ namespace viscofilm
                       Patterns::Double(0),
                       "von Mises stress of the total stress above which the "
                       "biofilm counts as prone to detach (statistics.csv: "
-                      "detachment_area), in units of ηs U0/L0 (≈ 0.0167 Pa with "
-                      "Table 4.1).");
+                      "detachment_area), in the run's stress unit: ηs U0/L0 "
+                      "(≈ 0.0167 Pa with Table 4.1), Pa with Units = SI. With "
+                      "Release = true also the biofilm's strength: the load of "
+                      "Criterion above it releases the biofilm.");
     prm.declare_entry("Interface volume fraction",
                       "0.05",
                       Patterns::Double(0, 1),
