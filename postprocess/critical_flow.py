@@ -17,7 +17,7 @@ profiles, a tighter tolerance) only runs what is new.
 
 Writes WORK/critical_flow.md (the table) and WORK/critical_flow.png (the
 figure: detached fraction against U_max per profile, and each profile's
-outline before and after the critical run).
+outline before and after the critical run, one panel per profile).
 
     /usr/bin/python3 postprocess/critical_flow.py --viscofilm build/viscofilm \\
         --work critical-flow
@@ -30,6 +30,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import viscofilm_io as vio  # noqa: E402
+from plot_run import draw_outline  # noqa: E402
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -190,13 +191,6 @@ def critical_flow(runner, profile):
     return runs, (low, high)
 
 
-def outline(ax, snapshot, **style):
-    phi = snapshot.fields["volume_fraction"]
-    if np.nanmin(phi) < vio.BIOFILM_LEVEL < np.nanmax(phi):
-        ax.tricontour(snapshot.triangulation, np.nan_to_num(phi), levels=[vio.BIOFILM_LEVEL],
-                      **style)
-
-
 def main():
     o = parse_arguments()
     os.makedirs(o.work, exist_ok=True)
@@ -235,8 +229,9 @@ def main():
         f.write(text)
     print(text)
 
-    fig = plt.figure(figsize=(12, 4.8))
-    curves = fig.add_subplot(1, 2, 1)
+    fig = plt.figure(figsize=(13, 5.5))
+    grid = fig.add_gridspec(3, 4)
+    curves = fig.add_subplot(grid[:, :2])
     for profile, (runs, (low, high)) in results.items():
         umax = sorted(runs)
         line, = curves.plot(umax, [100 * detached_fraction(runs[u]) for u in umax], "o-",
@@ -244,24 +239,29 @@ def main():
         if high in runs:
             curves.axvline(high, color=line.get_color(), lw=0.6, ls=":")
     curves.axhline(100 * o.fraction, color="k", lw=0.8, ls="--")
-    curves.set(xscale="log", xlabel="inflow U_max [U0 = 1 cm/min]",
-               ylabel="detached [% of ∫φ(0)]",
-               title=f"{o.criterion} > {o.strength:g} ηs U0/L0, Δx = 1/{2 ** o.refinement}")
+    curves.set(xlabel="inflow U_max [U0 = 1 cm/min]", ylabel="detached [% of ∫φ(0)]",
+               title=f"{o.criterion} > {o.strength:g} ηs U0/L0 (≈ {o.strength * STRESS_UNIT_PA:.2g}"
+                     f" Pa), Δx = 1/{2 ** o.refinement}, t = {o.steps * 0.1 / 2 ** o.refinement:g} T0")
     curves.legend(fontsize=8)
-    shapes = fig.add_subplot(1, 2, 2)
+    # One small panel per profile: the outline before and after its critical run.
     for index, (profile, (runs, (low, high))) in enumerate(results.items()):
-        if high not in runs:
-            continue
-        run = vio.Run(os.path.join(runner.directory(profile, high), "output"))
+        if index >= 6:
+            break
+        ax = fig.add_subplot(grid[index // 2, 2 + index % 2])
         colour = f"C{index}"
-        outline(shapes, run.load(run.snapshots[0]), colors=colour, linewidths=0.8,
-                linestyles="dashed")
-        outline(shapes, run.load(run.snapshots[-1]), colors=colour, linewidths=1.5)
-        shapes.plot([], [], color=colour, label=f"{profile}: U_crit = {high:.3g}")
-    shapes.set(aspect="equal", xlim=(0, 1), ylim=(0, 0.4), xlabel="x [cm]", ylabel="y [cm]",
-               title="outline φ = 0.05: initial (dashed), end of the critical run")
-    shapes.legend(fontsize=8)
-    fig.tight_layout()
+        if high in runs:
+            run = vio.Run(os.path.join(runner.directory(profile, high), "output"))
+            for snapshot, style in ((run.snapshots[0], dict(colors="k", linewidths=0.8,
+                                                            linestyles="dashed")),
+                                    (run.snapshots[-1], dict(colors=colour, linewidths=1.5))):
+                snap = run.load(snapshot)
+                draw_outline(ax, snap.triangulation, snap.fields["volume_fraction"], **style)
+        ax.set(aspect="equal", xlim=(0.2, 0.8), ylim=(0, 0.35), xticks=[], yticks=[],
+               title=f"{profile}: U_crit = {high:.3g}")
+        ax.title.set_fontsize(9)
+    fig.text(0.75, 0.01, "outline φ = 0.05 at t = 0 (dashed) and at the end of the critical "
+             "run; x in [0.2, 0.8], y in [0, 0.35] cm", ha="center", fontsize=8)
+    fig.tight_layout(rect=(0, 0.03, 1, 1))
     figure = os.path.join(o.work, "critical_flow.png")
     fig.savefig(figure, dpi=120)
     print(f"wrote {figure} and {os.path.join(o.work, 'critical_flow.md')}")

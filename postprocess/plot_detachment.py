@@ -11,16 +11,10 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import viscofilm_io as vio  # noqa: E402
+from plot_run import draw_outline  # noqa: E402
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-
-
-def outline(ax, snapshot, **style):
-    phi = snapshot.fields["volume_fraction"]
-    if np.nanmin(phi) < vio.BIOFILM_LEVEL < np.nanmax(phi):
-        ax.tricontour(snapshot.triangulation, np.nan_to_num(phi),
-                      levels=[vio.BIOFILM_LEVEL], **style)
 
 
 def main():
@@ -42,8 +36,9 @@ def main():
         snap = run.load(info)
         mesh = ax.tripcolor(snap.triangulation, np.nan_to_num(snap.fields["volume_fraction"]),
                             shading="gouraud", cmap="viridis", vmin=0, vmax=1)
-        outline(ax, first, colors="w", linewidths=0.8, linestyles="dashed")
-        outline(ax, snap, colors="k", linewidths=1.2)
+        draw_outline(ax, first.triangulation, first.fields["volume_fraction"], colors="w",
+                     linewidths=0.8, linestyles="dashed")
+        draw_outline(ax, snap.triangulation, snap.fields["volume_fraction"], linewidths=1.2)
         ax.set(aspect="equal", ylim=(0, 0.5), xlabel=f"x [{length}]", ylabel=f"y [{length}]",
                title=f"φ at t = {snap.time:.3g} {time_unit} (dashed: t = 0)")
         fig.colorbar(mesh, ax=ax, shrink=0.7)
