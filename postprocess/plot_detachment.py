@@ -31,16 +31,17 @@ def main():
     chosen = [snapshots[0], snapshots[len(snapshots) // 2], snapshots[-1]]
     first = run.load(chosen[0])
 
+    top = np.nanmax(first.fields["volume_fraction"])
     fig, axes = plt.subplots(2, 2, figsize=(11, 7.5))
     for ax, info in zip(axes.flat[:3], chosen):
         snap = run.load(info)
         mesh = ax.tripcolor(snap.triangulation, np.nan_to_num(snap.fields["volume_fraction"]),
-                            shading="gouraud", cmap="viridis", vmin=0, vmax=1)
+                            shading="gouraud", cmap="viridis", vmin=0, vmax=top)
         draw_outline(ax, first.triangulation, first.fields["volume_fraction"], colors="w",
                      linewidths=0.8, linestyles="dashed")
         draw_outline(ax, snap.triangulation, snap.fields["volume_fraction"], linewidths=1.2)
         ax.set(aspect="equal", ylim=(0, 0.5), xlabel=f"x [{length}]", ylabel=f"y [{length}]",
-               title=f"φ at t = {snap.time:.3g} {time_unit} (dashed: t = 0)")
+               title=f"φ at t = {snap.time:.3g} ({time_unit}); dashed: t = 0")
         fig.colorbar(mesh, ax=ax, shrink=0.7)
 
     ax = axes.flat[3]
@@ -51,7 +52,7 @@ def main():
                          c=stats["detached_centroid_y"][released], cmap="plasma", s=18,
                          label="a release, coloured by its centroid's y")
     fig.colorbar(scatter, ax=ax, shrink=0.7, label=f"centroid y [{length}]")
-    ax.set(xlabel=f"t [{time_unit}]", ylabel="detached [%]",
+    ax.set(xlabel=f"t ({time_unit})", ylabel="detached [%]",
            title="detached biofilm (taken away by the flow)")
     ax.legend(fontsize=8, loc="lower right")
     fig.tight_layout()
