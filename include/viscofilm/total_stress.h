@@ -24,7 +24,7 @@ namespace viscofilm
 {
   using namespace dealii;
 
-  /// von Mises equivalent sqrt(3 J2) of the in-plane deviator of σ.
+  /// von Mises equivalent sqrt(3 J2) of the in-plane deviator of σ (2D).
   inline double
   von_mises(const SymmetricTensor<2, 2> &sigma)
   {
@@ -36,7 +36,7 @@ namespace viscofilm
 
   /**
    * σ = −p I + 2η(φ) D(u) + φτ, φ and ∇φ at the points of a cell or face:
-   * FEValuesType is FEValues<2> or FEFaceValues<2>, with one object per
+   * FEValuesType is FEValues<dim> or FEFaceValues<dim>, with one object per
    * field (they live on different DoFHandlers of the same mesh).
    */
   template <class FEValuesType>
@@ -67,7 +67,7 @@ namespace viscofilm
       , grad_phi(quadrature.size())
       , velocity_gradient(quadrature.size())
       , pressure(quadrature.size())
-      , conformation(quadrature.size(), Vector<double>(3))
+      , conformation(quadrature.size(), Vector<double>(n_symmetric_components))
     {}
 
     /// Evaluate on @p cell (a cell of any of the DoFHandlers), or on its
@@ -81,7 +81,7 @@ namespace viscofilm
       stress_values.reinit(cell_of(stress.dof_handler(), cell), face...);
 
       const FEValuesExtractors::Vector velocities(0);
-      const FEValuesExtractors::Scalar pressure_component(2);
+      const FEValuesExtractors::Scalar pressure_component(dim);
       stokes_values[velocities].get_function_symmetric_gradients(stokes.solution(),
                                                                  velocity_gradient);
       stokes_values[pressure_component].get_function_values(stokes.solution(),
@@ -91,7 +91,7 @@ namespace viscofilm
       stress_values.get_function_values(stress.solution(), conformation);
       for (unsigned int q = 0; q < sigma.size(); ++q)
         {
-          sigma[q] = -pressure[q] * unit_symmetric_tensor<2>() +
+          sigma[q] = -pressure[q] * unit_symmetric_tensor<dim>() +
                      2 * model.viscosity(phi[q]) * velocity_gradient[q];
           if (model.viscoelastic)
             sigma[q] += model.stress_coupling(phi[q]) *
@@ -122,12 +122,12 @@ namespace viscofilm
     FEValuesType          stress_values;
 
   public:
-    std::vector<SymmetricTensor<2, 2>> sigma;
+    std::vector<SymmetricTensor<2, dim>> sigma;
     std::vector<double>                phi;
-    std::vector<Tensor<1, 2>>          grad_phi;
+    std::vector<Tensor<1, dim>>        grad_phi;
 
   private:
-    std::vector<SymmetricTensor<2, 2>> velocity_gradient;
+    std::vector<SymmetricTensor<2, dim>> velocity_gradient;
     std::vector<double>                pressure;
     std::vector<Vector<double>>        conformation;
   };
