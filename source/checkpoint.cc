@@ -175,7 +175,8 @@ namespace viscofilm
       {
         std::ofstream out(staging + "/state");
         out << std::setprecision(17) << "step " << state.step << "\ntime "
-            << state.time << "\nprevious_time_step " << state.previous_time_step << "\n";
+            << state.time << "\nprevious_time_step " << state.previous_time_step
+            << "\ndetached " << state.detached_mass << "\n";
         for (const auto &[path, value] : critical_entries(prm))
           out << "parameter " << path << " = " << value << "\n";
         out << "snapshots\n";
@@ -225,7 +226,8 @@ namespace viscofilm
     State              state;
     std::istringstream in(text);
     std::string        word, line;
-    in >> word >> state.step >> word >> state.time >> word >> state.previous_time_step;
+    in >> word >> state.step >> word >> state.time >> word >> state.previous_time_step >> word >>
+      state.detached_mass;
     std::getline(in, line);
     std::map<std::string, std::string> saved;
     while (std::getline(in, line) && line != "snapshots")

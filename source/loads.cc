@@ -13,6 +13,7 @@
 #include <viscofilm/output.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/stress.h>
+#include <viscofilm/total_stress.h>
 #include <viscofilm/volume_fraction.h>
 
 #include <algorithm>
@@ -22,16 +23,6 @@ namespace viscofilm
 {
   namespace
   {
-    /// von Mises equivalent sqrt(3 J2) of the in-plane deviator of σ.
-    double
-    von_mises(const SymmetricTensor<2, 2> &sigma)
-    {
-      const double half_difference = 0.5 * (sigma[0][0] - sigma[1][1]);
-      return std::sqrt(3 * (half_difference * half_difference +
-                            sigma[0][1] * sigma[0][1]));
-    }
-
-
     /// The tangential part of the traction @p force_density on a wall with
     /// outward normal @p normal: in 2D signed along the tangent n rotated by
     /// +90° (along +x on the bottom wall, where it is σ_xy), in 3D its length.
@@ -43,105 +34,6 @@ namespace viscofilm
       else
         return (force_density - (force_density * normal) * normal).norm();
     }
-
-
-    /**
-     * σ = −p I + 2η(φ) D(u) + φτ, φ and ∇φ at the points of a cell or face:
-     * FEValuesType is FEValues<2> or FEFaceValues<2>, with one object per
-     * field (they live on different DoFHandlers of the same mesh).
-     */
-    template <class FEValuesType>
-    class TotalStress
-    {
-    public:
-      template <class QuadratureType>
-      TotalStress(const QuadratureType &quadrature,
-                  const Model &         model,
-                  const StokesSolver &  stokes,
-                  const VolumeFraction &volume_fraction,
-                  const ElasticStress & stress,
-                  const UpdateFlags     extra_flags = update_default)
-        : model(model)
-        , stokes(stokes)
-        , volume_fraction(volume_fraction)
-        , stress(stress)
-        , stokes_values(stokes.dof_handler().get_fe(),
-                        quadrature,
-                        update_values | update_gradients | update_JxW_values |
-                          extra_flags)
-        , phi_values(volume_fraction.dof_handler().get_fe(),
-                     quadrature,
-                     update_values | update_gradients)
-        , stress_values(stress.dof_handler().get_fe(), quadrature, update_values)
-        , sigma(quadrature.size())
-        , phi(quadrature.size())
-        , grad_phi(quadrature.size())
-        , velocity_gradient(quadrature.size())
-        , pressure(quadrature.size())
-        , conformation(quadrature.size(), Vector<double>(3))
-      {}
-
-      /// Evaluate on @p cell (a cell of any of the DoFHandlers), or on its
-      /// face @p face.
-      template <class CellIterator, typename... Face>
-      void
-      reinit(const CellIterator &cell, const Face... face)
-      {
-        stokes_values.reinit(cell_of(stokes.dof_handler(), cell), face...);
-        phi_values.reinit(cell_of(volume_fraction.dof_handler(), cell), face...);
-        stress_values.reinit(cell_of(stress.dof_handler(), cell), face...);
-
-        const FEValuesExtractors::Vector velocities(0);
-        const FEValuesExtractors::Scalar pressure_component(2);
-        stokes_values[velocities].get_function_symmetric_gradients(stokes.solution(),
-                                                                   velocity_gradient);
-        stokes_values[pressure_component].get_function_values(stokes.solution(),
-                                                              pressure);
-        phi_values.get_function_values(volume_fraction.solution(), phi);
-        phi_values.get_function_gradients(volume_fraction.solution(), grad_phi);
-        stress_values.get_function_values(stress.solution(), conformation);
-        for (unsigned int q = 0; q < sigma.size(); ++q)
-          {
-            sigma[q] = -pressure[q] * unit_symmetric_tensor<2>() +
-                       2 * model.viscosity(phi[q]) * velocity_gradient[q];
-            if (model.viscoelastic)
-              sigma[q] += model.stress_coupling(phi[q]) *
-                          stress.stress_of(conformation[q], phi[q]);
-          }
-      }
-
-      double
-      JxW(const unsigned int q) const
-      {
-        return stokes_values.JxW(q);
-      }
-
-      /// The Stokes element's values (shape functions, normals).
-      const FEValuesType &
-      stokes_fe_values() const
-      {
-        return stokes_values;
-      }
-
-    private:
-      const Model &         model;
-      const StokesSolver &  stokes;
-      const VolumeFraction &volume_fraction;
-      const ElasticStress & stress;
-      FEValuesType          stokes_values;
-      FEValuesType          phi_values;
-      FEValuesType          stress_values;
-
-    public:
-      std::vector<SymmetricTensor<2, 2>> sigma;
-      std::vector<double>                phi;
-      std::vector<Tensor<1, 2>>          grad_phi;
-
-    private:
-      std::vector<SymmetricTensor<2, 2>> velocity_gradient;
-      std::vector<double>                pressure;
-      std::vector<Vector<double>>        conformation;
-    };
 
 
     /// σ_xy and σ_vm at the points DataOut evaluates (2 subdivisions).
@@ -230,8 +122,10 @@ namespace viscofilm
                       Patterns::Double(0),
                       "von Mises stress of the total stress above which the "
                       "biofilm counts as prone to detach (statistics.csv: "
-                      "detachment_area), in units of ηs U0/L0 (≈ 0.0167 Pa with "
-                      "Table 4.1).");
+                      "detachment_area), in the run's stress unit: ηs U0/L0 "
+                      "(≈ 0.0167 Pa with Table 4.1), Pa with Units = SI. With "
+                      "Release = true also the biofilm's strength: the load of "
+                      "Criterion above it releases the biofilm.");
     prm.declare_entry("Interface volume fraction",
                       "0.05",
                       Patterns::Double(0, 1),

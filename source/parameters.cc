@@ -17,6 +17,7 @@ namespace viscofilm
     DepartureFeet::Parameters::declare_parameters(prm);
     VolumeFraction::Parameters::declare_parameters(prm);
     BiofilmLoads::Parameters::declare_parameters(prm);
+    Detachment::Parameters::declare_parameters(prm);
     Output::Parameters::declare_parameters(prm);
     Verification::declare_parameters(prm);
     Checkpoint::Parameters::declare_parameters(prm);
@@ -38,6 +39,7 @@ namespace viscofilm
     departure_feet.parse_parameters(prm);
     stabilization.parse_parameters(prm);
     detachment.parse_parameters(prm, boundary_conditions);
+    release.parse_parameters(prm);
     output.parse_parameters(prm);
     verification.parse_parameters(prm);
     checkpointing.parse_parameters(prm);

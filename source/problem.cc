@@ -44,6 +44,12 @@ namespace viscofilm
             stokes,
             volume_fraction,
             stress)
+    , detachment(parameters.release,
+                 parameters.detachment,
+                 parameters.model,
+                 stokes,
+                 volume_fraction,
+                 stress)
     , output(parameters.output, triangulation)
     , checkpoint(parameters.checkpointing, parameters.output.directory, comm)
   {}
@@ -95,6 +101,7 @@ namespace viscofilm
     TimerOutput::Scope t(*computing_timer, "setup");
     stokes.setup_dofs();
     volume_fraction.setup_dofs();
+    detachment.setup_dofs();
     stress.setup_dofs(stokes.quadrature());
     mesh_changed();
     pcout << "Mesh: " << triangulation.n_global_active_cells() << " cells, Δx = "
@@ -121,10 +128,12 @@ namespace viscofilm
     stokes.prepare_for_refinement();
     stress.prepare_for_refinement();
     volume_fraction.prepare_for_refinement();
+    detachment.prepare_for_refinement();
     triangulation.execute_coarsening_and_refinement();
     stokes.finish_refinement();
     stress.finish_refinement();
     volume_fraction.finish_refinement();
+    detachment.finish_refinement();
     mesh_changed();
     return true;
   }
@@ -146,11 +155,14 @@ namespace viscofilm
     stokes.prepare_for_checkpoint();
     stress.prepare_for_checkpoint();
     volume_fraction.prepare_for_checkpoint();
+    detachment.prepare_for_checkpoint();
     triangulation.save(mesh_file);
     stokes.checkpoint_written();
     stress.checkpoint_written();
     volume_fraction.checkpoint_written();
-    checkpoint.commit({step, time, stokes.previous_time_step(), output.snapshots()}, prm);
+    detachment.checkpoint_written();
+    checkpoint.commit({step, time, stokes.previous_time_step(), output.snapshots(), detachment.total_mass()},
+                      prm);
   }
 
 
@@ -168,6 +180,8 @@ namespace viscofilm
     stokes.set_previous_time_step(state.previous_time_step);
     stress.finish_refinement();
     volume_fraction.finish_refinement();
+    detachment.finish_refinement();
+    detachment.set_total_mass(state.detached_mass);
     mesh_changed();
     output.prepare(prm, state.step, state.snapshots);
     pcout << "Resumed from " << parameters.output.directory << "/checkpoint at step "
@@ -309,6 +323,11 @@ namespace viscofilm
       report.transport_iterations =
         volume_fraction.advance(stokes, departure_feet, parameters.model.diffusion, k);
     }
+    // 4. Release what the step's loads detach (Detachment/Release).
+    {
+      TimerOutput::Scope t(*computing_timer, "detachment");
+      detachment.release(k);
+    }
     stokes.invalidate_matrix();
     return report;
   }
@@ -354,6 +373,7 @@ namespace viscofilm
                      parameters.verification.volume_fraction_l2_error(volume_fraction,
                                                                       time));
     loads.add_statistics(statistics);
+    detachment.add_statistics(statistics);
     statistics.set("min_conformation_eigenvalue", stress.min_eigenvalue());
     const DepartureFeet::Statistics &feet = departure_feet.statistics();
     statistics.set("feet_newton_iterations", feet.max_newton_iterations);

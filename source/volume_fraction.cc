@@ -596,6 +596,13 @@ namespace viscofilm
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
                                               mpi_communicator);
     VectorTools::interpolate(dofs, initial, distributed);
+    set(distributed);
+  }
+
+
+  void
+  VolumeFraction::set(TrilinosWrappers::MPI::Vector &distributed)
+  {
     constraints.distribute(distributed);
     if (parameters.bounded)
       bound_hanging_nodes(distributed, distributed, distributed);

@@ -36,6 +36,7 @@ namespace viscofilm
       /// k_{n-1} of StokesSolver's u^{n-1} (Time stepping/Order = 2), or 0.
       double                 previous_time_step = 0;
       std::vector<XDMFEntry> snapshots;
+      double                 detached_mass = 0; // Detachment's total
     };
 
     Checkpoint(const Parameters &parameters,

@@ -55,7 +55,8 @@ namespace viscofilm
       parse_parameters(ParameterHandler &        prm,
                        const BoundaryConditions &boundary_conditions);
 
-      /// σ_vm above which the biofilm counts as prone to detach.
+      /// σ_vm above which the biofilm counts as prone to detach; the
+      /// strength of the release (Detachment).
       double stress_threshold = 1.0;
       /// The biofilm is φ >= this; its interface the contour φ = this.
       double interface_level = 0.05;

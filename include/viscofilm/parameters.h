@@ -8,6 +8,7 @@
 #include <viscofilm/boundary_conditions.h>
 #include <viscofilm/checkpoint.h>
 #include <viscofilm/departure_feet.h>
+#include <viscofilm/detachment.h>
 #include <viscofilm/geometry.h>
 #include <viscofilm/initial_conditions.h>
 #include <viscofilm/loads.h>
@@ -48,6 +49,7 @@ namespace viscofilm
     DepartureFeet::Parameters departure_feet;
     VolumeFraction::Parameters stabilization;
     BiofilmLoads::Parameters  detachment;
+    Detachment::Parameters    release;
     Output::Parameters       output;
     Verification             verification;
     Checkpoint::Parameters   checkpointing;

@@ -11,6 +11,7 @@
 
 #include <viscofilm/checkpoint.h>
 #include <viscofilm/departure_feet.h>
+#include <viscofilm/detachment.h>
 #include <viscofilm/loads.h>
 #include <viscofilm/output.h>
 #include <viscofilm/parameters.h>
@@ -108,6 +109,7 @@ namespace viscofilm
     ElasticStress                           stress;
     DepartureFeet                           departure_feet;
     BiofilmLoads                            loads;
+    Detachment                              detachment;
     Output                                  output;
     Checkpoint                              checkpoint;
   };

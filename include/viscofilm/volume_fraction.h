@@ -63,6 +63,12 @@ namespace viscofilm
     void
     interpolate(const Function<2> &initial);
 
+    /// φ := @p distributed (owned values, no ghosts), with the constraints
+    /// distributed (and, bounded, the hanging nodes kept in range): a change
+    /// made outside the transport (the detachment's release).
+    void
+    set(TrilinosWrappers::MPI::Vector &distributed);
+
     /// MODEL.md §3 step 3: φ^{n+1} from φ^n with the velocity of @p stokes
     /// and the φ-scaled diffusion D φ^n ∇φ; φ takes each boundary's Volume
     /// fraction where the flow enters. Bounded: semi-Lagrangian along the
