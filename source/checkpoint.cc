@@ -175,7 +175,7 @@ namespace viscofilm
       {
         std::ofstream out(staging + "/state");
         out << std::setprecision(17) << "step " << state.step << "\ntime "
-            << state.time << "\n";
+            << state.time << "\nnext_time_step " << state.next_time_step << "\n";
         for (const auto &[path, value] : critical_entries(prm))
           out << "parameter " << path << " = " << value << "\n";
         out << "snapshots\n";
@@ -229,8 +229,11 @@ namespace viscofilm
     std::getline(in, line);
     std::map<std::string, std::string> saved;
     while (std::getline(in, line) && line != "snapshots")
-      saved[line.substr(10, line.find(" = ") - 10)] =
-        line.substr(line.find(" = ") + 3);
+      if (line.rfind("next_time_step ", 0) == 0)
+        state.next_time_step = std::stod(line.substr(15));
+      else
+        saved[line.substr(10, line.find(" = ") - 10)] =
+          line.substr(line.find(" = ") + 3);
     for (const auto &[path, value] : critical_entries(prm))
       {
         const auto entry = saved.find(path);

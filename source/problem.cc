@@ -5,6 +5,7 @@
 #include <viscofilm/input.h>
 #include <viscofilm/problem.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -147,7 +148,7 @@ namespace viscofilm
     stokes.checkpoint_written();
     stress.checkpoint_written();
     volume_fraction.checkpoint_written();
-    checkpoint.commit({step, time, output.snapshots()}, prm);
+    checkpoint.commit({step, time, proposed_time_step, output.snapshots()}, prm);
   }
 
 
@@ -165,6 +166,7 @@ namespace viscofilm
     stress.finish_refinement();
     volume_fraction.finish_refinement();
     mesh_changed();
+    proposed_time_step = state.next_time_step;
     output.prepare(prm, state.step, state.snapshots);
     pcout << "Resumed from " << parameters.output.directory << "/checkpoint at step "
           << state.step << ", t = " << state.time << std::endl;
@@ -289,10 +291,51 @@ namespace viscofilm
     {
       TimerOutput::Scope t(*computing_timer, "volume fraction");
       report.transport_iterations =
-        volume_fraction.advance(stokes, departure_feet, parameters.model.diffusion, k);
+        volume_fraction.advance(stokes,
+                                departure_feet,
+                                parameters.model.diffusion,
+                                k,
+                                parameters.time_stepping.order,
+                                parameters.time_stepping.controlled());
     }
     stokes.invalidate_matrix();
     return report;
+  }
+
+
+  Problem::StepReport
+  Problem::take_step(const double time)
+  {
+    const TimeStepping &stepping = parameters.time_stepping;
+    // The step's CFL number is that of u^n, which the feet follow.
+    const double speed = stokes.max_velocity();
+    for (unsigned int rejected = 0;; ++rejected)
+      {
+        time_step = stepping.step_length(time, speed, min_cell_size, proposed_time_step);
+        step_cfl  = speed * time_step / min_cell_size;
+        StepReport report = do_time_step(time + time_step);
+        if (!stepping.controlled())
+          return report;
+        // The fields' local error estimates; the controller takes the
+        // largest. Merge (issue 13 item 1): add stress.error_estimate().
+        const std::vector<double> estimates = {volume_fraction.error_estimate()};
+        report.error_estimate = *std::max_element(estimates.begin(), estimates.end());
+        report.rejected_steps = rejected;
+        proposed_time_step    = stepping.next_step(time_step, report.error_estimate);
+        if (stepping.accept(time_step, report.error_estimate))
+          {
+            if (report.error_estimate > stepping.tolerance)
+              pcout << "   Warning: the error estimate " << report.error_estimate
+                    << " exceeds Time stepping/Tolerance at Minimum time step, t = "
+                    << time + time_step << std::endl;
+            return report;
+          }
+        // Rejected: every field back to t_n, and again shorter. Merge (issue
+        // 13 item 1): stress.restore_old().
+        stokes.restore_old();
+        volume_fraction.restore_old();
+        stokes.invalidate_matrix();
+      }
   }
 
 
@@ -314,6 +357,8 @@ namespace viscofilm
     statistics.set("picard_velocity_change", report.picard_velocity_change);
     statistics.set("picard_stress_change", report.picard_stress_change);
     statistics.set("transport_iterations", report.transport_iterations);
+    statistics.set("error_estimate", report.error_estimate);
+    statistics.set("rejected_steps", report.rejected_steps);
     statistics.set("max_velocity", max_velocity);
     statistics.set("max_cell_divergence", stokes.max_cell_divergence());
     statistics.set("volume_fraction_integral", volume_fraction.integral());
@@ -411,16 +456,15 @@ namespace viscofilm
     const double       start_time        = time;
     for (unsigned int step = first_step; time < end_time * (1 - 1e-12); ++step)
       {
-        // The step's CFL number is that of u^n, which the feet follow.
-        const double speed = stokes.max_velocity();
-        time_step = parameters.time_stepping.step_length(time, speed, min_cell_size);
-        step_cfl  = speed * time_step / min_cell_size;
-        time += time_step;
-        const bool last_step = (time >= end_time * (1 - 1e-12));
         StepReport report;
+        bool       last_step = false;
+        bool       stepped   = false; // time is t_{n+1}
         try
           {
-            report = do_time_step(time);
+            report    = take_step(time);
+            time     += time_step;
+            stepped   = true;
+            last_step = (time >= end_time * (1 - 1e-12));
             write_statistics(step, time, report);
             output_results(step, time, last_step);
             stokes.advance_time();
@@ -435,7 +479,7 @@ namespace viscofilm
         catch (const std::exception &e)
           {
             std::ostringstream where;
-            where << "at time step " << step << " (t = " << time
+            where << "at time step " << step << " (t = " << (stepped ? time : time + time_step)
                   << "): " << error_message(e)
                   << ". statistics.csv and the snapshots written so far are valid.";
             throw ExcMessage(where.str());

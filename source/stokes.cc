@@ -930,6 +930,20 @@ namespace viscofilm
   }
 
 
+  const TrilinosWrappers::MPI::BlockVector &
+  StokesSolver::start_of_step_solution() const
+  {
+    return old_solution;
+  }
+
+
+  void
+  StokesSolver::restore_old()
+  {
+    current_solution = old_solution;
+  }
+
+
   const DoFHandler<2> &
   StokesSolver::dof_handler() const
   {

@@ -33,6 +33,8 @@ namespace viscofilm
     {
       unsigned int           step      = 0;
       double                 time      = 0;
+      /// The error controller's next step (0: none, TimeStepping).
+      double                 next_time_step = 0;
       std::vector<XDMFEntry> snapshots;
     };
 
