@@ -201,7 +201,7 @@ namespace viscofilm
     // Second order: the feet by the midpoint rule, with u^{n+1/2} ≈
     // (u^n + u^{n+1})/2 (local error O(k³)); first order: with u^{n+1},
     // as the thesis transports φ with it.
-    const DoFHandler<2> &                    stokes_dofs = stokes.dof_handler();
+    const DoFHandler<dim> &                  stokes_dofs = stokes.dof_handler();
     TrilinosWrappers::MPI::BlockVector midpoint;
     if (order == 2)
       midpoint = average(stokes.start_of_step_solution(), stokes.solution());
@@ -388,7 +388,7 @@ namespace viscofilm
 
 
   void
-  VolumeFraction::semi_lagrangian_step(const DoFHandler<2> &stokes_dofs,
+  VolumeFraction::semi_lagrangian_step(const DoFHandler<dim> &stokes_dofs,
                                        const TrilinosWrappers::MPI::BlockVector &velocity,
                                        DepartureFeet &                           feet,
                                        const double                   time_step,
@@ -626,7 +626,7 @@ namespace viscofilm
 
 
   double
-  VolumeFraction::boundary_flux(const DoFHandler<2> &                     stokes_dofs,
+  VolumeFraction::boundary_flux(const DoFHandler<dim> &                     stokes_dofs,
                                 const TrilinosWrappers::MPI::BlockVector &velocity_field) const
   {
     const QGauss<1>                  quadrature(fe.degree + 1);

@@ -18,6 +18,7 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <viscofilm/boundary_conditions.h>
+#include <viscofilm/dimension.h>
 #include <viscofilm/mesh_refinement.h>
 
 #include <array>
@@ -140,7 +141,7 @@ namespace viscofilm
     /// range of the cell holding the foot, which goes to @p lower and
     /// @p upper; owned values, constraints distributed.
     void
-    semi_lagrangian_step(const DoFHandler<2> &                     stokes_dofs,
+    semi_lagrangian_step(const DoFHandler<dim> &                     stokes_dofs,
                          const TrilinosWrappers::MPI::BlockVector &velocity,
                          DepartureFeet &                           feet,
                          const double                              time_step,
@@ -179,7 +180,7 @@ namespace viscofilm
 
     /// ∫_∂Ω φ u·n ds with the velocity @p velocity on @p stokes_dofs.
     double
-    boundary_flux(const DoFHandler<2> &                     stokes_dofs,
+    boundary_flux(const DoFHandler<dim> &                     stokes_dofs,
                   const TrilinosWrappers::MPI::BlockVector &velocity) const;
 
     /// Hanging nodes, and φ = boundary value on faces where the flow enters
