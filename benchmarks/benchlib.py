@@ -114,3 +114,16 @@ def read_csv(path):
     """Rows of a viscofilm CSV file as dicts of floats."""
     with open(path) as f:
         return [{key: float(value) for key, value in row.items()} for row in csv.DictReader(f)]
+
+
+def probes_at(probes, time, fields):
+    """Probe rows of probes.csv (one per probe, in order) at @p time, each of
+    @p fields linear in time between the two steps around it."""
+    times = sorted({row["time"] for row in probes})
+    after = next(t for t in times if t >= time - 1e-12)
+    before = max([t for t in times if t <= time + 1e-12])
+    weight = 0 if after == before else (time - before) / (after - before)
+    rows_before = [row for row in probes if row["time"] == before]
+    rows_after = [row for row in probes if row["time"] == after]
+    return [{f: (1 - weight) * a[f] + weight * b[f] for f in fields}
+            for a, b in zip(rows_before, rows_after)]

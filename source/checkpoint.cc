@@ -176,7 +176,8 @@ namespace viscofilm
         std::ofstream out(staging + "/state");
         out << std::setprecision(17) << "step " << state.step << "\ntime "
             << state.time << "\nprevious_time_step " << state.previous_time_step
-            << "\ndetached " << state.detached_mass << "\n";
+            << "\ndetached " << state.detached_mass << "\nnext_time_step "
+            << state.next_time_step << "\n";
         for (const auto &[path, value] : critical_entries(prm))
           out << "parameter " << path << " = " << value << "\n";
         out << "snapshots\n";
@@ -231,8 +232,11 @@ namespace viscofilm
     std::getline(in, line);
     std::map<std::string, std::string> saved;
     while (std::getline(in, line) && line != "snapshots")
-      saved[line.substr(10, line.find(" = ") - 10)] =
-        line.substr(line.find(" = ") + 3);
+      if (line.rfind("next_time_step ", 0) == 0)
+        state.next_time_step = std::stod(line.substr(15));
+      else
+        saved[line.substr(10, line.find(" = ") - 10)] =
+          line.substr(line.find(" = ") + 3);
     for (const auto &[path, value] : critical_entries(prm))
       {
         const auto entry = saved.find(path);

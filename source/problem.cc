@@ -5,6 +5,7 @@
 #include <viscofilm/input.h>
 #include <viscofilm/problem.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -161,7 +162,12 @@ namespace viscofilm
     stress.checkpoint_written();
     volume_fraction.checkpoint_written();
     detachment.checkpoint_written();
-    checkpoint.commit({step, time, stokes.previous_time_step(), output.snapshots(), detachment.total_mass()},
+    checkpoint.commit({step,
+                       time,
+                       stokes.previous_time_step(),
+                       proposed_time_step,
+                       output.snapshots(),
+                       detachment.total_mass()},
                       prm);
   }
 
@@ -183,6 +189,7 @@ namespace viscofilm
     detachment.finish_refinement();
     detachment.set_total_mass(state.detached_mass);
     mesh_changed();
+    proposed_time_step = state.next_time_step;
     output.prepare(prm, state.step, state.snapshots);
     pcout << "Resumed from " << parameters.output.directory << "/checkpoint at step "
           << state.step << ", t = " << state.time << std::endl;
@@ -321,15 +328,58 @@ namespace viscofilm
     {
       TimerOutput::Scope t(*computing_timer, "volume fraction");
       report.transport_iterations =
-        volume_fraction.advance(stokes, departure_feet, parameters.model.diffusion, k);
-    }
-    // 4. Release what the step's loads detach (Detachment/Release).
-    {
-      TimerOutput::Scope t(*computing_timer, "detachment");
-      detachment.release(k);
+        volume_fraction.advance(stokes,
+                                departure_feet,
+                                parameters.model.diffusion,
+                                k,
+                                parameters.time_stepping.order,
+                                parameters.time_stepping.controlled());
     }
     stokes.invalidate_matrix();
     return report;
+  }
+
+
+  Problem::StepReport
+  Problem::take_step(const double time)
+  {
+    const TimeStepping &stepping = parameters.time_stepping;
+    // The step's CFL number is that of u^n, which the feet follow.
+    const double speed = stokes.max_velocity();
+    for (unsigned int rejected = 0;; ++rejected)
+      {
+        time_step = stepping.step_length(time, speed, min_cell_size, proposed_time_step);
+        step_cfl  = speed * time_step / min_cell_size;
+        StepReport report = do_time_step(time + time_step);
+        if (stepping.controlled())
+          {
+            // The fields' local error estimates; the controller takes the
+            // largest.
+            report.error_estimate =
+              std::max(volume_fraction.error_estimate(), stress.error_estimate());
+            report.rejected_steps = rejected;
+            proposed_time_step    = stepping.next_step(time_step, report.error_estimate);
+            if (!stepping.accept(time_step, report.error_estimate))
+              {
+                // Rejected: every field back to t_n, and again shorter.
+                stokes.restore_old();
+                stress.restore_old();
+                volume_fraction.restore_old();
+                stokes.invalidate_matrix();
+                continue;
+              }
+            if (report.error_estimate > stepping.tolerance)
+              pcout << "   Warning: the error estimate " << report.error_estimate
+                    << " exceeds Time stepping/Tolerance at Minimum time step, t = "
+                    << time + time_step << std::endl;
+          }
+        // 4. Release what the accepted step's loads detach (Detachment/Release).
+        {
+          TimerOutput::Scope t(*computing_timer, "detachment");
+          detachment.release(time_step);
+        }
+        return report;
+      }
   }
 
 
@@ -351,6 +401,8 @@ namespace viscofilm
     statistics.set("picard_velocity_change", report.picard_velocity_change);
     statistics.set("picard_stress_change", report.picard_stress_change);
     statistics.set("transport_iterations", report.transport_iterations);
+    statistics.set("error_estimate", report.error_estimate);
+    statistics.set("rejected_steps", report.rejected_steps);
     statistics.set("max_velocity", max_velocity);
     statistics.set("max_cell_divergence", stokes.max_cell_divergence());
     statistics.set("volume_fraction_integral", volume_fraction.integral());
@@ -449,16 +501,15 @@ namespace viscofilm
     const double       start_time        = time;
     for (unsigned int step = first_step; time < end_time * (1 - 1e-12); ++step)
       {
-        // The step's CFL number is that of u^n, which the feet follow.
-        const double speed = stokes.max_velocity();
-        time_step = parameters.time_stepping.step_length(time, speed, min_cell_size);
-        step_cfl  = speed * time_step / min_cell_size;
-        time += time_step;
-        const bool last_step = (time >= end_time * (1 - 1e-12));
         StepReport report;
+        bool       last_step = false;
+        bool       stepped   = false; // time is t_{n+1}
         try
           {
-            report = do_time_step(time);
+            report    = take_step(time);
+            time     += time_step;
+            stepped   = true;
+            last_step = (time >= end_time * (1 - 1e-12));
             write_statistics(step, time, report);
             output_results(step, time, last_step);
             stokes.advance_time();
@@ -473,7 +524,7 @@ namespace viscofilm
         catch (const std::exception &e)
           {
             std::ostringstream where;
-            where << "at time step " << step << " (t = " << time
+            where << "at time step " << step << " (t = " << (stepped ? time : time + time_step)
                   << "): " << error_message(e)
                   << ". statistics.csv and the snapshots written so far are valid.";
             throw ExcMessage(where.str());

@@ -1015,10 +1015,24 @@ namespace viscofilm
   }
 
 
+  const TrilinosWrappers::MPI::BlockVector &
+  StokesSolver::start_of_step_solution() const
+  {
+    return old_solution;
+  }
+
+
   void
   StokesSolver::set_previous_time_step(const double time_step)
   {
     previous_step = time_step;
+  }
+
+
+  void
+  StokesSolver::restore_old()
+  {
+    current_solution = old_solution;
   }
 
 

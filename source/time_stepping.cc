@@ -2,6 +2,7 @@
 #include <viscofilm/time_stepping.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace viscofilm
 {
@@ -34,6 +35,35 @@ namespace viscofilm
                       "transport and the Res ∂u/∂t term: 1 (the thesis' "
                       "scheme) or 2 (doc/numerics.md, \"Second order in "
                       "time\").");
+    prm.declare_entry("Tolerance",
+                      "0",
+                      Patterns::Double(0),
+                      "0: no error control (steps as set by Time step and "
+                      "CFL number). > 0, with Order = 2: the largest local "
+                      "error estimate of the step's fields (the difference "
+                      "of the second-order update from an embedded "
+                      "first-order one; φ: max over its nodes) must stay "
+                      "below this, or the step is redone shorter; Time step "
+                      "and CFL number bound the step from above "
+                      "(doc/numerics.md, \"Error-controlled time steps\").");
+    prm.declare_entry("Safety factor",
+                      "0.8",
+                      Patterns::Double(0),
+                      "Used with Tolerance > 0: the next step is Safety "
+                      "factor × (Tolerance / estimate)^(1/2) × the last one, "
+                      "in (0, 1].");
+    prm.declare_entry("Maximum growth",
+                      "2",
+                      Patterns::Double(1),
+                      "Used with Tolerance > 0: a step is at most this many "
+                      "times the last one, >= 1.");
+    prm.declare_entry("Minimum time step",
+                      "1e-6",
+                      Patterns::Double(0),
+                      "Used with Tolerance > 0: the controller's step is at "
+                      "least this; a step this short is accepted whatever its "
+                      "estimate (statistics.csv: error_estimate above the "
+                      "tolerance), > 0.");
     prm.declare_entry("Picard tolerance",
                       "1e-6",
                       Patterns::Double(0),
@@ -60,6 +90,10 @@ namespace viscofilm
     n_steps   = prm.get_integer("Number of steps");
     cfl                   = prm.get_double("CFL number");
     order                 = prm.get_integer("Order");
+    tolerance             = prm.get_double("Tolerance");
+    safety_factor         = prm.get_double("Safety factor");
+    max_growth            = prm.get_double("Maximum growth");
+    minimum_time_step     = prm.get_double("Minimum time step");
     picard_tolerance      = prm.get_double("Picard tolerance");
     max_picard_iterations = prm.get_integer("Maximum Picard iterations");
     prm.leave_subsection();
@@ -68,17 +102,52 @@ namespace viscofilm
                   to_text(time_step));
     check_input(picard_tolerance > 0,
                 "Time stepping/Picard tolerance must be > 0, got 0");
+    check_input(tolerance == 0 || order == 2,
+                "Time stepping/Tolerance > 0 needs Time stepping/Order = 2 (the "
+                "error estimate compares the second-order update with the "
+                "first-order one), got Order = 1");
+    check_input(safety_factor > 0 && safety_factor <= 1,
+                "Time stepping/Safety factor must be in (0, 1], got " +
+                  to_text(safety_factor));
+    check_input(minimum_time_step > 0,
+                "Time stepping/Minimum time step must be > 0, got 0");
   }
 
 
   double
   TimeStepping::step_length(const double time,
                             const double max_speed,
-                            const double cell_size) const
+                            const double cell_size,
+                            const double proposed) const
   {
     double k = time_step;
     if (cfl > 0 && max_speed > 0)
       k = std::min(k, cfl * cell_size / max_speed);
+    if (proposed > 0)
+      k = std::min(k, proposed);
     return std::min(k, n_steps * time_step - time);
+  }
+
+
+  bool
+  TimeStepping::controlled() const
+  {
+    return tolerance > 0;
+  }
+
+
+  double
+  TimeStepping::next_step(const double time_step, const double estimate) const
+  {
+    const double factor =
+      estimate > 0 ? safety_factor * std::sqrt(tolerance / estimate) : max_growth;
+    return std::max(minimum_time_step, time_step * std::min(factor, max_growth));
+  }
+
+
+  bool
+  TimeStepping::accept(const double time_step, const double estimate) const
+  {
+    return estimate <= tolerance || time_step <= minimum_time_step * (1 + 1e-12);
   }
 } // namespace viscofilm

@@ -163,22 +163,86 @@ namespace viscofilm
   }
 
 
+  namespace
+  {
+    /// (@p a + @p b)/2 with the ghost layout of @p a.
+    TrilinosWrappers::MPI::BlockVector
+    average(const TrilinosWrappers::MPI::BlockVector &a,
+            const TrilinosWrappers::MPI::BlockVector &b)
+    {
+      std::vector<IndexSet> owned;
+      for (unsigned int block = 0; block < a.n_blocks(); ++block)
+        owned.push_back(a.block(block).locally_owned_elements());
+      TrilinosWrappers::MPI::BlockVector sum(owned, a.block(0).get_mpi_communicator());
+      TrilinosWrappers::MPI::BlockVector other(sum);
+      sum   = a;
+      other = b;
+      sum.add(1.0, other);
+      sum *= 0.5;
+      TrilinosWrappers::MPI::BlockVector result(a);
+      result = sum;
+      return result;
+    }
+  } // namespace
+
+
   unsigned int
   VolumeFraction::advance(const StokesSolver &stokes,
                           DepartureFeet &     feet,
                           const double        diffusion,
-                          const double        time_step)
+                          const double        time_step,
+                          const unsigned int  order,
+                          const bool          estimate_error)
   {
+    old_solution        = current_solution;
+    last_error_estimate = 0;
     if (!parameters.bounded)
       return gls_step(&stokes, diffusion, time_step);
-    // The mass balance of the step: M^{n+1} = M^n − k ∫_∂Ω φ^n u^{n+1}·n.
-    const double mass = integral() - time_step * boundary_flux(stokes);
+    // Second order: the feet by the midpoint rule, with u^{n+1/2} ≈
+    // (u^n + u^{n+1})/2 (local error O(k³)); first order: with u^{n+1},
+    // as the thesis transports φ with it.
+    const DoFHandler<dim> &                  stokes_dofs = stokes.dof_handler();
+    TrilinosWrappers::MPI::BlockVector midpoint;
+    if (order == 2)
+      midpoint = average(stokes.start_of_step_solution(), stokes.solution());
+    const TrilinosWrappers::MPI::BlockVector &velocity =
+      order == 2 ? midpoint : stokes.solution();
+    // The mass balance of the step: M^{n+1} = M^n − k ∫_∂Ω φ^n u·n.
+    const double mass = integral() - time_step * boundary_flux(stokes_dofs, velocity);
     make_constraints(&stokes);
-    TrilinosWrappers::MPI::Vector lower, upper;
-    semi_lagrangian_step(stokes, feet, time_step, lower, upper);
+    TrilinosWrappers::MPI::Vector advected, lower, upper;
+    if (estimate_error && order == 2)
+      {
+        semi_lagrangian_step(
+          stokes_dofs, stokes.solution(), feet, time_step, advected, lower, upper);
+        const TrilinosWrappers::MPI::Vector first_order = advected;
+        semi_lagrangian_step(stokes_dofs, velocity, feet, time_step, advected, lower, upper);
+        double difference = 0;
+        for (const auto i : dofs.locally_owned_dofs())
+          difference =
+            std::max(difference, std::abs(advected[i] - first_order[i]));
+        last_error_estimate = Utilities::MPI::max(difference, mpi_communicator);
+      }
+    else
+      semi_lagrangian_step(stokes_dofs, velocity, feet, time_step, advected, lower, upper);
+    current_solution = advected;
     const unsigned int iterations = bounded_diffusion_step(diffusion, time_step);
     restore_mass(mass, lower, upper);
     return iterations;
+  }
+
+
+  double
+  VolumeFraction::error_estimate() const
+  {
+    return last_error_estimate;
+  }
+
+
+  void
+  VolumeFraction::restore_old()
+  {
+    current_solution = old_solution;
   }
 
 
@@ -324,11 +388,13 @@ namespace viscofilm
 
 
   void
-  VolumeFraction::semi_lagrangian_step(const StokesSolver &           stokes,
-                                       DepartureFeet &                feet,
+  VolumeFraction::semi_lagrangian_step(const DoFHandler<dim> &stokes_dofs,
+                                       const TrilinosWrappers::MPI::BlockVector &velocity,
+                                       DepartureFeet &                           feet,
                                        const double                   time_step,
+                                       TrilinosWrappers::MPI::Vector &advected,
                                        TrilinosWrappers::MPI::Vector &lower,
-                                       TrilinosWrappers::MPI::Vector &upper)
+                                       TrilinosWrappers::MPI::Vector &upper) const
   {
     // The free nodes this rank owns, each with a cell around it as the hint.
     const IndexSet &                                    owned = dofs.locally_owned_dofs();
@@ -354,8 +420,7 @@ namespace viscofilm
               }
         }
 
-    // With u^{n+1}, as the thesis transports φ with it.
-    feet.compute(nodes, cells, stokes.dof_handler(), stokes.solution(), time_step);
+    feet.compute(nodes, cells, stokes_dofs, velocity, time_step);
     std::vector<double> cell_values(fe.n_dofs_per_cell());
     auto                at_feet = feet.at_feet().evaluate<3>(
       [&](const Triangulation<2>::active_cell_iterator &cell,
@@ -377,18 +442,17 @@ namespace viscofilm
       if (inflow[n] != numbers::invalid_boundary_id)
         at_feet[n].fill(boundary_conditions.boundary(inflow[n]).volume_fraction);
 
-    TrilinosWrappers::MPI::Vector distributed(owned, mpi_communicator);
+    advected.reinit(owned, mpi_communicator);
     lower.reinit(owned, mpi_communicator);
     upper.reinit(owned, mpi_communicator);
     for (unsigned int n = 0; n < nodes.size(); ++n)
       {
         const auto &[value, low, high] = at_feet[n];
-        distributed[node_dofs[n]]      = std::clamp(value, low, high);
+        advected[node_dofs[n]]         = std::clamp(value, low, high);
         lower[node_dofs[n]]            = low;
         upper[node_dofs[n]]            = high;
       }
-    constraints.distribute(distributed);
-    current_solution = distributed;
+    constraints.distribute(advected);
   }
 
 
@@ -562,11 +626,12 @@ namespace viscofilm
 
 
   double
-  VolumeFraction::boundary_flux(const StokesSolver &stokes) const
+  VolumeFraction::boundary_flux(const DoFHandler<dim> &                     stokes_dofs,
+                                const TrilinosWrappers::MPI::BlockVector &velocity_field) const
   {
     const QGauss<1>                  quadrature(fe.degree + 1);
     FEFaceValues<2>                  phi_face(fe, quadrature, update_values | update_JxW_values);
-    FEFaceValues<2>                  stokes_face(stokes.dof_handler().get_fe(),
+    FEFaceValues<2>                  stokes_face(stokes_dofs.get_fe(),
                                 quadrature,
                                 update_values | update_normal_vectors);
     const FEValuesExtractors::Vector velocities(0);
@@ -579,9 +644,9 @@ namespace viscofilm
           if (cell->at_boundary(f))
             {
               phi_face.reinit(cell, f);
-              stokes_face.reinit(cell_of(stokes.dof_handler(), cell), f);
+              stokes_face.reinit(cell_of(stokes_dofs, cell), f);
               phi_face.get_function_values(current_solution, phi);
-              stokes_face[velocities].get_function_values(stokes.solution(), velocity);
+              stokes_face[velocities].get_function_values(velocity_field, velocity);
               for (const unsigned int q : phi_face.quadrature_point_indices())
                 flux += phi[q] * (velocity[q] * stokes_face.normal_vector(q)) *
                         phi_face.JxW(q);

@@ -37,7 +37,8 @@ In modes run and convergence, --bound "file.csv:column<value" (or >) must hold
 in every row of the run(s), and "file.csv:max(column)<value" (or sum) for the
 largest value or the sum over the rows: a check against a stated limit,
 whatever the reference says. "file.csv[step>N]:..." checks only the rows
-after step N ([step>0]: after the initial state).
+after step N ([step>0]: after the initial state); any column and < work
+alike ("statistics.csv[time<0.1]:time_step<0.01").
 
 --data FILE (repeatable) copies FILE into the work directory before the run:
 the images a .prm names relative to itself.
@@ -133,14 +134,16 @@ def check_bounds(opts, directory):
     """Each bound holds at every row, or, for max(column) and sum(column), for
     the largest value or the sum over the rows."""
     for bound in opts.bound:
-        match = re.fullmatch(r"([^[]+)(?:\[step>(\d+)\])?:(\w+|max\(\w+\)|sum\(\w+\))([<>])(.+)",
-                             bound)
+        match = re.fullmatch(r"([^[]+)(?:\[(\w+)([<>])([^]]+)\])?:"
+                             r"(\w+|max\(\w+\)|sum\(\w+\))([<>])(.+)", bound)
         if not match:
             fail("bad --bound " + bound)
-        filename, after_step, column, relation, limit = match.groups()
+        filename, row_column, row_relation, row_limit, column, relation, limit = match.groups()
         rows = read_csv(os.path.join(directory, filename))
-        if after_step:
-            rows = [row for row in rows if float(row["step"]) > int(after_step)]
+        if row_column:
+            rows = [row for row in rows
+                    if (float(row[row_column]) > float(row_limit) if row_relation == ">"
+                        else float(row[row_column]) < float(row_limit))]
         reduction = re.fullmatch(r"(max|sum)\((\w+)\)", column)
         if reduction:
             values = [float(row[reduction.group(2)]) for row in rows]

@@ -35,6 +35,8 @@ namespace viscofilm
       double                 time      = 0;
       /// k_{n-1} of StokesSolver's u^{n-1} (Time stepping/Order = 2), or 0.
       double                 previous_time_step = 0;
+      /// The error controller's next step (0: none, TimeStepping).
+      double                 next_time_step = 0;
       std::vector<XDMFEntry> snapshots;
       double                 detached_mass = 0; // Detachment's total
     };

@@ -50,6 +50,10 @@ namespace viscofilm
       double       picard_velocity_change  = 0;
       double       picard_stress_change    = 0;
       unsigned int transport_iterations    = 0;
+      // Error control: the largest of the fields' estimates, and how many
+      // tries of this step were rejected before it.
+      double       error_estimate          = 0;
+      unsigned int rejected_steps          = 0;
     };
 
     /// The coarse mesh with its periodic pairs, refined globally; checks
@@ -81,6 +85,11 @@ namespace viscofilm
     resume_from_checkpoint();
     void
     set_initial_conditions();
+    /// The step from t_n = @p time: its length (time_step) from Time
+    /// stepping, and with error control tried and redone shorter until its
+    /// estimate is within the tolerance.
+    StepReport
+    take_step(const double time);
     /// One step t_n -> t_{n+1} = @p time of length time_step: feet, Picard
     /// loop, transport.
     StepReport
@@ -96,6 +105,7 @@ namespace viscofilm
     double                  time_step     = 0; // of the current step
     double                  step_cfl      = 0; // its max|u^n| k / Δx
     double                  min_cell_size = 0; // smallest cell edge
+    double                  proposed_time_step = 0; // the controller's; 0: none
     const ParameterHandler &prm;
     MPI_Comm                mpi_communicator;
     ConditionalOStream      pcout;

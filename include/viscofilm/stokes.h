@@ -221,6 +221,16 @@ namespace viscofilm
     double
     velocity_relative_change(const TrilinosWrappers::MPI::BlockVector &previous) const;
 
+    /// (u^n, p^n) with ghost values: the solution at the start of the step
+    /// (before advance_time(), solution() is the step's end).
+    const TrilinosWrappers::MPI::BlockVector &
+    start_of_step_solution() const;
+
+    /// The solution := (u^n, p^n), the state at the start of the step: a
+    /// rejected step.
+    void
+    restore_old();
+
   private:
     void
     make_constraints(const double time);

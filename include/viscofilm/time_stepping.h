@@ -18,10 +18,31 @@ namespace viscofilm
 
     /// The length of the step from @p time: Time step, or with CFL number
     /// > 0 at most cfl × @p cell_size / @p max_speed (max|u^n|, the velocity
-    /// the departure feet follow; @p cell_size the smallest cell edge), and
-    /// ending at the end time n_steps × time_step at the latest.
+    /// the departure feet follow; @p cell_size the smallest cell edge), at
+    /// most @p proposed (the controller's step; 0: none), and ending at the
+    /// end time n_steps × time_step at the latest.
     double
-    step_length(const double time, const double max_speed, const double cell_size) const;
+    step_length(const double time,
+                const double max_speed,
+                const double cell_size,
+                const double proposed = 0) const;
+
+    /// The error-controlled step (Tolerance > 0) is on.
+    bool
+    controlled() const;
+
+    /// The controller's next step after a step of length @p time_step whose
+    /// local error estimate (the largest of the fields') is @p estimate:
+    /// the estimate is that of the embedded first-order update, O(k²), so
+    /// k_new = k × safety (tolerance / estimate)^{1/2}, at most max_growth
+    /// × k and at least minimum_time_step.
+    double
+    next_step(const double time_step, const double estimate) const;
+
+    /// Accept a step of @p time_step with @p estimate: within the tolerance,
+    /// or already at the minimum step.
+    bool
+    accept(const double time_step, const double estimate) const;
 
     double       time_step = 0.003125;
     unsigned int n_steps   = 200;
@@ -30,6 +51,13 @@ namespace viscofilm
     double       cfl = 0;
     /// Order of accuracy in k of the stress, φ and inertia updates: 1 or 2.
     unsigned int order = 1;
+
+    /// Error control (doc/numerics.md, "Error-controlled time steps"):
+    /// tolerance on the local error estimate, 0 = off.
+    double tolerance         = 0;
+    double safety_factor     = 0.8;
+    double max_growth        = 2;
+    double minimum_time_step = 1e-6;
 
     /// The Picard loop between Stokes and the stress (MODEL.md §3 step 2c).
     double       picard_tolerance      = 1e-6;

@@ -18,6 +18,7 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <viscofilm/boundary_conditions.h>
+#include <viscofilm/dimension.h>
 #include <viscofilm/mesh_refinement.h>
 
 #include <array>
@@ -72,14 +73,29 @@ namespace viscofilm
     /// MODEL.md §3 step 3: φ^{n+1} from φ^n with the velocity of @p stokes
     /// and the φ-scaled diffusion D φ^n ∇φ; φ takes each boundary's Volume
     /// fraction where the flow enters. Bounded: semi-Lagrangian along the
-    /// feet of φ's nodes (traced by @p feet with u^{n+1}), clipped, then the
-    /// bounded diffusion step and the mass fixer. Thesis: GLS-stabilised
-    /// Galerkin. Returns the linear solver's iteration count.
+    /// feet of φ's nodes (traced by @p feet with u^{n+1}; @p order 2: with
+    /// (u^n + u^{n+1})/2, the midpoint rule), clipped, then the bounded
+    /// diffusion step and the mass fixer. Thesis: GLS-stabilised Galerkin.
+    /// @p estimate_error (order 2, bounded): also the first-order feet, for
+    /// error_estimate(). Returns the linear solver's iteration count.
     unsigned int
     advance(const StokesSolver &stokes,
             DepartureFeet &     feet,
             const double        diffusion,
-            const double        time_step);
+            const double        time_step,
+            const unsigned int  order          = 1,
+            const bool          estimate_error = false);
+
+    /// After advance() with estimate_error: max over the nodes of |φ₂ − φ₁|,
+    /// the advected φ of the second-order feet against that of the
+    /// first-order ones (φ is a fraction: the absolute difference is
+    /// dimensionless), the local error of a first-order step. 0 otherwise.
+    double
+    error_estimate() const;
+
+    /// φ := φ^n, the state before the last advance(): a rejected step.
+    void
+    restore_old();
 
     /// Eq. 2.50: @p n_steps implicit Euler steps of ∂φ/∂t = ∇·(D φ ∇φ).
     void
@@ -126,15 +142,18 @@ namespace viscofilm
     unsigned int
     solve();
 
-    /// The bounded scheme's advection: φ := φ^n at the feet of the nodes,
-    /// clipped to the nodal range of the cell holding the foot, which goes
-    /// to @p lower and @p upper.
+    /// The bounded scheme's advection: @p advected := φ^n at the feet of the
+    /// nodes along @p velocity (on @p stokes_dofs), clipped to the nodal
+    /// range of the cell holding the foot, which goes to @p lower and
+    /// @p upper; owned values, constraints distributed.
     void
-    semi_lagrangian_step(const StokesSolver &           stokes,
-                         DepartureFeet &                feet,
-                         const double                   time_step,
-                         TrilinosWrappers::MPI::Vector &lower,
-                         TrilinosWrappers::MPI::Vector &upper);
+    semi_lagrangian_step(const DoFHandler<dim> &                     stokes_dofs,
+                         const TrilinosWrappers::MPI::BlockVector &velocity,
+                         DepartureFeet &                           feet,
+                         const double                              time_step,
+                         TrilinosWrappers::MPI::Vector &           advected,
+                         TrilinosWrappers::MPI::Vector &           lower,
+                         TrilinosWrappers::MPI::Vector &           upper) const;
 
     /// One implicit Euler step of ∂φ/∂t = ∇·(D φ^n ∇φ) with lumped mass and
     /// the stiffness of the Q1 sub-cells of the Q2 nodes, discretely
@@ -165,9 +184,10 @@ namespace viscofilm
                  const TrilinosWrappers::MPI::Vector &lower,
                  const TrilinosWrappers::MPI::Vector &upper);
 
-    /// ∫_∂Ω φ u·n ds with the velocity of @p stokes.
+    /// ∫_∂Ω φ u·n ds with the velocity @p velocity on @p stokes_dofs.
     double
-    boundary_flux(const StokesSolver &stokes) const;
+    boundary_flux(const DoFHandler<dim> &                     stokes_dofs,
+                  const TrilinosWrappers::MPI::BlockVector &velocity) const;
 
     /// Hanging nodes, and φ = boundary value on faces where the flow enters
     /// (their mean u·n below −1e-8 max|u|, so that round-off on a wall is
@@ -189,6 +209,8 @@ namespace viscofilm
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;
     TrilinosWrappers::MPI::Vector current_solution; // ghosted
+    TrilinosWrappers::MPI::Vector old_solution;     // φ^n, for restore_old()
+    double                        last_error_estimate = 0;
     SolutionCarrier<TrilinosWrappers::MPI::Vector> carrier;
   };
 } // namespace viscofilm
