@@ -287,6 +287,30 @@ namespace viscofilm
                       Patterns::Integer(1),
                       "Iterations of the inner CG solve with the weighted "
                       "pressure mass matrix at most, >= 1.");
+    prm.declare_entry("Reuse",
+                      "true",
+                      Patterns::Bool(),
+                      "true: keep the velocity block's AMG hierarchy across "
+                      "matrix assemblies (time steps, and Picard iterations "
+                      "with Implicit elastic viscosity) until one of the two "
+                      "rebuild criteria below holds; the Krylov solver always "
+                      "uses the current matrix, so the answer is the same to "
+                      "the solver tolerance. false: build it for every new "
+                      "matrix. See doc/numerics.md.");
+    prm.declare_entry("Rebuild viscosity change",
+                      "0.1",
+                      Patterns::Double(0),
+                      "With Reuse: rebuild the AMG when the volume mean of "
+                      "|ln(η/η_built)| over the quadrature points, η_built the "
+                      "viscosity the AMG was built with, exceeds this, >= 0 "
+                      "(0: rebuild whenever the viscosity changed).");
+    prm.declare_entry("Rebuild iteration growth",
+                      "1.5",
+                      Patterns::Double(1),
+                      "With Reuse: rebuild the AMG at the next assembly when "
+                      "the first solve with a new matrix took more than this "
+                      "factor times the outer iterations of the first solve "
+                      "after the last build, >= 1.");
     prm.leave_subsection();
     prm.leave_subsection();
   }
@@ -322,6 +346,9 @@ namespace viscofilm
     velocity_inner_iterations = prm.get_integer("Velocity inner iterations");
     schur_inner_tolerance     = prm.get_double("Schur inner tolerance");
     schur_inner_iterations    = prm.get_integer("Schur inner iterations");
+    reuse_preconditioner      = prm.get_bool("Reuse");
+    rebuild_viscosity_change  = prm.get_double("Rebuild viscosity change");
+    rebuild_iteration_growth  = prm.get_double("Rebuild iteration growth");
     prm.leave_subsection();
     prm.leave_subsection();
     check_input(tolerance > 0,
@@ -372,6 +399,11 @@ namespace viscofilm
     make_constraints(0.0);
     const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
 
+    // The AMG refers to the matrix it was built from: drop it first.
+    velocity_amg.reset();
+    mass_jacobi.reset();
+    viscosity_at_build.clear();
+    rebuild_requested = false;
     system_matrix.clear();
     preconditioner_matrix.clear();
     monolithic_matrix.clear();
@@ -455,8 +487,7 @@ namespace viscofilm
   void
   StokesSolver::invalidate_matrix()
   {
-    matrix_is_current         = false;
-    preconditioner_is_current = false;
+    matrix_is_current = false;
   }
 
 
@@ -516,6 +547,18 @@ namespace viscofilm
       elastic_viscosity_cache.resize(triangulation.n_locally_owned_active_cells() *
                                      n_q_points);
     std::size_t cached = 0;
+    // η at the quadrature points, for the AMG's rebuild criterion: the
+    // integrals of |ln(η/η_built)| and of 1 (Preconditioner/Reuse).
+    const bool track_viscosity =
+      assemble_matrix && !direct && parameters.reuse_preconditioner;
+    const bool compare_viscosity =
+      track_viscosity && velocity_amg &&
+      viscosity_at_build.size() ==
+        triangulation.n_locally_owned_active_cells() * n_q_points;
+    std::vector<double> viscosity_now;
+    if (track_viscosity)
+      viscosity_now.reserve(triangulation.n_locally_owned_active_cells() * n_q_points);
+    double change_integrals[2] = {0, 0};
     const bool                         use_feet = !old_velocity_at_feet.empty();
     unsigned int                       foot     = 0;
 
@@ -559,6 +602,20 @@ namespace viscofilm
                   viscosity[q] += elastic_viscosity[q];
                 }
             }
+
+          if (track_viscosity)
+            for (unsigned int q = 0; q < n_q_points; ++q)
+              {
+                if (compare_viscosity)
+                  {
+                    change_integrals[0] +=
+                      std::abs(std::log(viscosity[q] /
+                                        viscosity_at_build[viscosity_now.size()])) *
+                      fe_values.JxW(q);
+                    change_integrals[1] += fe_values.JxW(q);
+                  }
+                viscosity_now.push_back(viscosity[q]);
+              }
 
           if (use_feet)
             for (unsigned int q = 0; q < n_q_points; ++q)
@@ -671,8 +728,22 @@ namespace viscofilm
             system_matrix.compress(VectorOperation::add);
             preconditioner_matrix.compress(VectorOperation::add);
           }
-        matrix_is_current         = true;
-        preconditioner_is_current = false;
+        matrix_is_current              = true;
+        mass_preconditioner_is_current = false;
+        first_solve_with_matrix        = true;
+        // Keep the AMG while it still fits the new matrix (Reuse).
+        viscosity_change = 0;
+        if (compare_viscosity)
+          {
+            Utilities::MPI::sum(change_integrals, mpi_communicator, change_integrals);
+            viscosity_change = change_integrals[0] / change_integrals[1];
+          }
+        if (!compare_viscosity || rebuild_requested ||
+            viscosity_change > parameters.rebuild_viscosity_change)
+          {
+            preconditioner_is_current = false;
+            viscosity_at_build.swap(viscosity_now);
+          }
       }
     system_rhs.compress(VectorOperation::add);
     // Constrained rows are decoupled (their values come from distribute()).
@@ -732,10 +803,9 @@ namespace viscofilm
     amg_data.n_cycles              = parameters.amg_cycles;
     velocity_amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
     velocity_amg->initialize(system_matrix.block(0, 0), amg_data);
-
-    mass_jacobi = std::make_unique<TrilinosWrappers::PreconditionJacobi>();
-    mass_jacobi->initialize(preconditioner_matrix.block(1, 1));
     preconditioner_is_current = true;
+    rebuild_requested         = false;
+    ++n_builds;
   }
 
 
@@ -761,8 +831,15 @@ namespace viscofilm
   StokesSolver::solve_block_preconditioned(
     TrilinosWrappers::MPI::BlockVector &distributed)
   {
-    if (!preconditioner_is_current)
+    const bool built = !preconditioner_is_current;
+    if (built)
       build_preconditioner();
+    if (!mass_preconditioner_is_current)
+      {
+        mass_jacobi = std::make_unique<TrilinosWrappers::PreconditionJacobi>();
+        mass_jacobi->initialize(preconditioner_matrix.block(1, 1));
+        mass_preconditioner_is_current = true;
+      }
 
     const double rhs_norm = system_rhs.l2_norm();
     unsigned int iterations = 0;
@@ -808,6 +885,17 @@ namespace viscofilm
                     std::to_string(parameters.max_iterations) + ")");
               }
           }
+      }
+    // The iteration criterion of Reuse, on like solves: the first with each
+    // new matrix (later Picard iterations start from better guesses).
+    if (first_solve_with_matrix)
+      {
+        if (built)
+          iterations_after_build = iterations;
+        else if (iterations > parameters.rebuild_iteration_growth *
+                                std::max(iterations_after_build, 1u))
+          rebuild_requested = true;
+        first_solve_with_matrix = false;
       }
     return iterations;
   }
@@ -1045,5 +1133,19 @@ namespace viscofilm
         }
     Utilities::MPI::sum(squares, mpi_communicator, squares);
     return squares[1] > 0 ? std::sqrt(squares[0] / squares[1]) : std::sqrt(squares[0]);
+  }
+
+
+  unsigned int
+  StokesSolver::n_preconditioner_builds() const
+  {
+    return n_builds;
+  }
+
+
+  double
+  StokesSolver::viscosity_change_since_build() const
+  {
+    return viscosity_change;
   }
 } // namespace viscofilm
