@@ -291,8 +291,8 @@ namespace viscofilm
                       "true",
                       Patterns::Bool(),
                       "true: keep the velocity block's AMG hierarchy across "
-                      "matrix assemblies (time steps, and Picard iterations "
-                      "with Implicit elastic viscosity) until one of the two "
+                      "matrix assemblies (one per time step, as φ moves) "
+                      "until one of the two "
                       "rebuild criteria below holds; the Krylov solver always "
                       "uses the current matrix, so the answer is the same to "
                       "the solver tolerance. false: build it for every new "

@@ -88,8 +88,8 @@ namespace viscofilm
       unsigned int velocity_inner_iterations = 1000;
       double       schur_inner_tolerance     = 1e-3;
       unsigned int schur_inner_iterations    = 200;
-      /// Keep the velocity block's AMG across matrix assemblies (Picard
-      /// iterations, time steps) until the viscosity has moved by more than
+      /// Keep the velocity block's AMG across matrix assemblies (one per
+      /// time step) until the viscosity has moved by more than
       /// rebuild_viscosity_change (volume mean of |ln(η/η_built)|) or the
       /// first solve with a new matrix needs more than
       /// rebuild_iteration_growth times the outer iterations of the first
