@@ -831,7 +831,7 @@ namespace viscofilm
   StokesSolver::solve_block_preconditioned(
     TrilinosWrappers::MPI::BlockVector &distributed)
   {
-    const bool built = !preconditioner_is_current;
+    bool built = !preconditioner_is_current;
     if (built)
       build_preconditioner();
     if (!mass_preconditioner_is_current)
@@ -841,49 +841,71 @@ namespace viscofilm
         mass_preconditioner_is_current = true;
       }
 
-    const double rhs_norm = system_rhs.l2_norm();
+    // FGMRES from `distributed` with at most n_cheap cheap iterations, then
+    // (if `go_on`) expensive ones; true if it converged.
+    const double target = parameters.tolerance * system_rhs.l2_norm();
     unsigned int iterations = 0;
-    if (rhs_norm > 0)
+    const auto fgmres = [&](const unsigned int n_cheap, const bool go_on) {
+      for (const bool expensive : {false, true})
+        {
+          SolverControl control(expensive ? parameters.max_iterations : n_cheap, target);
+          SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(
+            control,
+            SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(
+              parameters.krylov_basis));
+          const BlockSchurPreconditioner preconditioner(
+            system_matrix,
+            preconditioner_matrix.block(1, 1),
+            *velocity_amg,
+            *mass_jacobi,
+            parameters,
+            expensive);
+          try
+            {
+              solver.solve(system_matrix, distributed, system_rhs, preconditioner);
+              iterations += control.last_step();
+              return true;
+            }
+          catch (const SolverControl::NoConvergence &e)
+            {
+              iterations += e.last_step;
+              if (expensive)
+                throw ExcMessage(
+                  "the Stokes solver (FGMRES) did not converge in " +
+                  std::to_string(iterations) + " iterations: residual " +
+                  Utilities::to_string(e.last_residual) + ", target " +
+                  Utilities::to_string(control.tolerance()) +
+                  " (Stokes solver/Maximum iterations = " +
+                  std::to_string(parameters.max_iterations) + ")");
+              if (!go_on)
+                return false;
+            }
+        }
+      return false;
+    };
+
+    if (target > 0)
       {
         distributed = current_solution; // the last solution as first guess
         constraints.set_zero(distributed);
-        // Cheap iterations first; if they stall, go on from where they got
-        // with expensive ones (ASPECT's strategy).
         const unsigned int n_cheap =
           std::min(parameters.max_iterations, parameters.cheap_iterations);
-        for (const bool expensive : {false, true})
+        // A reused AMG gets twice Rebuild iteration growth × the iterations
+        // after its build; if it cannot do with those (η moved too far: it
+        // can stall altogether), it is rebuilt at once and FGMRES goes on
+        // from where it got.
+        const unsigned int reuse_limit = static_cast<unsigned int>(
+          2 * parameters.rebuild_iteration_growth * std::max(iterations_after_build, 1u));
+        if (built || !fgmres(std::min(n_cheap, reuse_limit), false))
           {
-            SolverControl control(expensive ? parameters.max_iterations : n_cheap,
-                                  parameters.tolerance * rhs_norm);
-            SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(
-              control,
-              SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(
-                parameters.krylov_basis));
-            const BlockSchurPreconditioner preconditioner(
-              system_matrix,
-              preconditioner_matrix.block(1, 1),
-              *velocity_amg,
-              *mass_jacobi,
-              parameters,
-              expensive);
-            try
+            if (!built)
               {
-                solver.solve(system_matrix, distributed, system_rhs, preconditioner);
-                iterations += control.last_step();
-                break;
+                build_preconditioner();
+                built = true;
               }
-            catch (const SolverControl::NoConvergence &e)
-              {
-                iterations += e.last_step;
-                if (expensive)
-                  throw ExcMessage(
-                    "the Stokes solver (FGMRES) did not converge in " +
-                    std::to_string(iterations) + " iterations: residual " +
-                    Utilities::to_string(e.last_residual) + ", target " +
-                    Utilities::to_string(control.tolerance()) +
-                    " (Stokes solver/Maximum iterations = " +
-                    std::to_string(parameters.max_iterations) + ")");
-              }
+            // Cheap iterations first; if they stall, go on from where they
+            // got with expensive ones (ASPECT's strategy).
+            fgmres(n_cheap, true);
           }
       }
     // The iteration criterion of Reuse, on like solves: the first with each
