@@ -396,6 +396,8 @@ namespace viscofilm
     const double max_velocity = stokes.max_velocity();
     statistics.set("cells", triangulation.n_global_active_cells());
     statistics.set("stokes_iterations", report.total_stokes_iterations);
+    statistics.set("stokes_preconditioner_builds", stokes.n_preconditioner_builds());
+    statistics.set("stokes_viscosity_change", stokes.viscosity_change_since_build());
     statistics.set("picard_iterations", report.picard_iterations);
     statistics.set("picard_converged", report.picard_converged);
     statistics.set("picard_velocity_change", report.picard_velocity_change);

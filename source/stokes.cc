@@ -287,6 +287,30 @@ namespace viscofilm
                       Patterns::Integer(1),
                       "Iterations of the inner CG solve with the weighted "
                       "pressure mass matrix at most, >= 1.");
+    prm.declare_entry("Reuse",
+                      "true",
+                      Patterns::Bool(),
+                      "true: keep the velocity block's AMG hierarchy across "
+                      "matrix assemblies (one per time step, as φ moves) "
+                      "until one of the two "
+                      "rebuild criteria below holds; the Krylov solver always "
+                      "uses the current matrix, so the answer is the same to "
+                      "the solver tolerance. false: build it for every new "
+                      "matrix. See doc/numerics.md.");
+    prm.declare_entry("Rebuild viscosity change",
+                      "0.1",
+                      Patterns::Double(0),
+                      "With Reuse: rebuild the AMG when the volume mean of "
+                      "|ln(η/η_built)| over the quadrature points, η_built the "
+                      "viscosity the AMG was built with, exceeds this, >= 0 "
+                      "(0: rebuild whenever the viscosity changed).");
+    prm.declare_entry("Rebuild iteration growth",
+                      "1.5",
+                      Patterns::Double(1),
+                      "With Reuse: rebuild the AMG at the next assembly when "
+                      "the first solve with a new matrix took more than this "
+                      "factor times the outer iterations of the first solve "
+                      "after the last build, >= 1.");
     prm.leave_subsection();
     prm.leave_subsection();
   }
@@ -322,6 +346,9 @@ namespace viscofilm
     velocity_inner_iterations = prm.get_integer("Velocity inner iterations");
     schur_inner_tolerance     = prm.get_double("Schur inner tolerance");
     schur_inner_iterations    = prm.get_integer("Schur inner iterations");
+    reuse_preconditioner      = prm.get_bool("Reuse");
+    rebuild_viscosity_change  = prm.get_double("Rebuild viscosity change");
+    rebuild_iteration_growth  = prm.get_double("Rebuild iteration growth");
     prm.leave_subsection();
     prm.leave_subsection();
     check_input(tolerance > 0,
@@ -374,6 +401,11 @@ namespace viscofilm
     make_constraints(0.0);
     const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
 
+    // The AMG refers to the matrix it was built from: drop it first.
+    velocity_amg.reset();
+    mass_jacobi.reset();
+    viscosity_at_build.clear();
+    rebuild_requested = false;
     system_matrix.clear();
     preconditioner_matrix.clear();
     monolithic_matrix.clear();
@@ -458,8 +490,7 @@ namespace viscofilm
   void
   StokesSolver::invalidate_matrix()
   {
-    matrix_is_current         = false;
-    preconditioner_is_current = false;
+    matrix_is_current = false;
   }
 
 
@@ -520,6 +551,18 @@ namespace viscofilm
       elastic_viscosity_cache.resize(triangulation.n_locally_owned_active_cells() *
                                      n_q_points);
     std::size_t cached = 0;
+    // η at the quadrature points, for the AMG's rebuild criterion: the
+    // integrals of |ln(η/η_built)| and of 1 (Preconditioner/Reuse).
+    const bool track_viscosity =
+      assemble_matrix && !direct && parameters.reuse_preconditioner;
+    const bool compare_viscosity =
+      track_viscosity && velocity_amg &&
+      viscosity_at_build.size() ==
+        triangulation.n_locally_owned_active_cells() * n_q_points;
+    std::vector<double> viscosity_now;
+    if (track_viscosity)
+      viscosity_now.reserve(triangulation.n_locally_owned_active_cells() * n_q_points);
+    double change_integrals[2] = {0, 0};
     const bool                         use_feet = !old_velocity_at_feet.empty();
     unsigned int                       foot     = 0;
 
@@ -572,6 +615,20 @@ namespace viscofilm
                   viscosity[q] += elastic_viscosity[q];
                 }
             }
+
+          if (track_viscosity)
+            for (unsigned int q = 0; q < n_q_points; ++q)
+              {
+                if (compare_viscosity)
+                  {
+                    change_integrals[0] +=
+                      std::abs(std::log(viscosity[q] /
+                                        viscosity_at_build[viscosity_now.size()])) *
+                      fe_values.JxW(q);
+                    change_integrals[1] += fe_values.JxW(q);
+                  }
+                viscosity_now.push_back(viscosity[q]);
+              }
 
           if (use_feet)
             for (unsigned int q = 0; q < n_q_points; ++q, ++foot)
@@ -689,8 +746,22 @@ namespace viscofilm
             system_matrix.compress(VectorOperation::add);
             preconditioner_matrix.compress(VectorOperation::add);
           }
-        matrix_is_current         = true;
-        preconditioner_is_current = false;
+        matrix_is_current              = true;
+        mass_preconditioner_is_current = false;
+        first_solve_with_matrix        = true;
+        // Keep the AMG while it still fits the new matrix (Reuse).
+        viscosity_change = 0;
+        if (compare_viscosity)
+          {
+            Utilities::MPI::sum(change_integrals, mpi_communicator, change_integrals);
+            viscosity_change = change_integrals[0] / change_integrals[1];
+          }
+        if (!compare_viscosity || rebuild_requested ||
+            viscosity_change > parameters.rebuild_viscosity_change)
+          {
+            preconditioner_is_current = false;
+            viscosity_at_build.swap(viscosity_now);
+          }
       }
     system_rhs.compress(VectorOperation::add);
     // Constrained rows are decoupled (their values come from distribute()).
@@ -788,10 +859,9 @@ namespace viscofilm
     amg_data.n_cycles              = parameters.amg_cycles;
     velocity_amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
     velocity_amg->initialize(system_matrix.block(0, 0), amg_data);
-
-    mass_jacobi = std::make_unique<TrilinosWrappers::PreconditionJacobi>();
-    mass_jacobi->initialize(preconditioner_matrix.block(1, 1));
     preconditioner_is_current = true;
+    rebuild_requested         = false;
+    ++n_builds;
   }
 
 
@@ -817,53 +887,93 @@ namespace viscofilm
   StokesSolver::solve_block_preconditioned(
     TrilinosWrappers::MPI::BlockVector &distributed)
   {
-    if (!preconditioner_is_current)
+    bool built = !preconditioner_is_current;
+    if (built)
       build_preconditioner();
+    if (!mass_preconditioner_is_current)
+      {
+        mass_jacobi = std::make_unique<TrilinosWrappers::PreconditionJacobi>();
+        mass_jacobi->initialize(preconditioner_matrix.block(1, 1));
+        mass_preconditioner_is_current = true;
+      }
 
-    const double rhs_norm = system_rhs.l2_norm();
+    // FGMRES from `distributed` with at most n_cheap cheap iterations, then
+    // (if `go_on`) expensive ones; true if it converged.
+    const double target = parameters.tolerance * system_rhs.l2_norm();
     unsigned int iterations = 0;
-    if (rhs_norm > 0)
+    const auto fgmres = [&](const unsigned int n_cheap, const bool go_on) {
+      for (const bool expensive : {false, true})
+        {
+          SolverControl control(expensive ? parameters.max_iterations : n_cheap, target);
+          SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(
+            control,
+            SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(
+              parameters.krylov_basis));
+          const BlockSchurPreconditioner preconditioner(
+            system_matrix,
+            preconditioner_matrix.block(1, 1),
+            *velocity_amg,
+            *mass_jacobi,
+            parameters,
+            expensive);
+          try
+            {
+              solver.solve(system_matrix, distributed, system_rhs, preconditioner);
+              iterations += control.last_step();
+              return true;
+            }
+          catch (const SolverControl::NoConvergence &e)
+            {
+              iterations += e.last_step;
+              if (expensive)
+                throw ExcMessage(
+                  "the Stokes solver (FGMRES) did not converge in " +
+                  std::to_string(iterations) + " iterations: residual " +
+                  Utilities::to_string(e.last_residual) + ", target " +
+                  Utilities::to_string(control.tolerance()) +
+                  " (Stokes solver/Maximum iterations = " +
+                  std::to_string(parameters.max_iterations) + ")");
+              if (!go_on)
+                return false;
+            }
+        }
+      return false;
+    };
+
+    if (target > 0)
       {
         distributed = current_solution; // the last solution as first guess
         constraints.set_zero(distributed);
-        // Cheap iterations first; if they stall, go on from where they got
-        // with expensive ones (ASPECT's strategy).
         const unsigned int n_cheap =
           std::min(parameters.max_iterations, parameters.cheap_iterations);
-        for (const bool expensive : {false, true})
+        // A reused AMG gets twice Rebuild iteration growth × the iterations
+        // after its build; if it cannot do with those (η moved too far: it
+        // can stall altogether), it is rebuilt at once and FGMRES goes on
+        // from where it got.
+        const unsigned int reuse_limit = static_cast<unsigned int>(
+          2 * parameters.rebuild_iteration_growth * std::max(iterations_after_build, 1u));
+        if (built || !fgmres(std::min(n_cheap, reuse_limit), false))
           {
-            SolverControl control(expensive ? parameters.max_iterations : n_cheap,
-                                  parameters.tolerance * rhs_norm);
-            SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(
-              control,
-              SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(
-                parameters.krylov_basis));
-            const BlockSchurPreconditioner preconditioner(
-              system_matrix,
-              preconditioner_matrix.block(1, 1),
-              *velocity_amg,
-              *mass_jacobi,
-              parameters,
-              expensive);
-            try
+            if (!built)
               {
-                solver.solve(system_matrix, distributed, system_rhs, preconditioner);
-                iterations += control.last_step();
-                break;
+                build_preconditioner();
+                built = true;
               }
-            catch (const SolverControl::NoConvergence &e)
-              {
-                iterations += e.last_step;
-                if (expensive)
-                  throw ExcMessage(
-                    "the Stokes solver (FGMRES) did not converge in " +
-                    std::to_string(iterations) + " iterations: residual " +
-                    Utilities::to_string(e.last_residual) + ", target " +
-                    Utilities::to_string(control.tolerance()) +
-                    " (Stokes solver/Maximum iterations = " +
-                    std::to_string(parameters.max_iterations) + ")");
-              }
+            // Cheap iterations first; if they stall, go on from where they
+            // got with expensive ones (ASPECT's strategy).
+            fgmres(n_cheap, true);
           }
+      }
+    // The iteration criterion of Reuse, on like solves: the first with each
+    // new matrix (later Picard iterations start from better guesses).
+    if (first_solve_with_matrix)
+      {
+        if (built)
+          iterations_after_build = iterations;
+        else if (iterations > parameters.rebuild_iteration_growth *
+                                std::max(iterations_after_build, 1u))
+          rebuild_requested = true;
+        first_solve_with_matrix = false;
       }
     return iterations;
   }
@@ -1151,5 +1261,19 @@ namespace viscofilm
         }
     Utilities::MPI::sum(squares, mpi_communicator, squares);
     return squares[1] > 0 ? std::sqrt(squares[0] / squares[1]) : std::sqrt(squares[0]);
+  }
+
+
+  unsigned int
+  StokesSolver::n_preconditioner_builds() const
+  {
+    return n_builds;
+  }
+
+
+  double
+  StokesSolver::viscosity_change_since_build() const
+  {
+    return viscosity_change;
   }
 } // namespace viscofilm

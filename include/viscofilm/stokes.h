@@ -88,6 +88,15 @@ namespace viscofilm
       unsigned int velocity_inner_iterations = 1000;
       double       schur_inner_tolerance     = 1e-3;
       unsigned int schur_inner_iterations    = 200;
+      /// Keep the velocity block's AMG across matrix assemblies (one per
+      /// time step) until the viscosity has moved by more than
+      /// rebuild_viscosity_change (volume mean of |ln(η/η_built)|) or the
+      /// first solve with a new matrix needs more than
+      /// rebuild_iteration_growth times the outer iterations of the first
+      /// solve after the last build.
+      bool   reuse_preconditioner     = true;
+      double rebuild_viscosity_change = 0.1;
+      double rebuild_iteration_growth = 1.5;
     };
 
     /// τ at the quadrature points of a cell given φ there, for the elastic
@@ -231,6 +240,16 @@ namespace viscofilm
     void
     restore_old();
 
+    /// How often the velocity AMG was built so far (Preconditioner/Reuse).
+    unsigned int
+    n_preconditioner_builds() const;
+
+    /// The rebuild criterion's measure at the last matrix assembly: the
+    /// volume mean of |ln(η/η_built)| against the AMG in use until then (0
+    /// if there was none, or without Reuse).
+    double
+    viscosity_change_since_build() const;
+
   private:
     void
     make_constraints(const double time);
@@ -282,7 +301,20 @@ namespace viscofilm
     SolutionCarrier<TrilinosWrappers::MPI::BlockVector> previous_carrier; // Order = 2
 
     bool matrix_is_current = false;
-    bool preconditioner_is_current = false;
+    bool preconditioner_is_current = false;      // the velocity AMG
+    bool mass_preconditioner_is_current = false; // Jacobi of (1/η) M_p
+
+    /// Reuse of the AMG: η at each owned cell's quadrature points when it
+    /// was built (empty: no AMG for this mesh), the outer iterations of the
+    /// first solve after that build, whether the next solve is the first
+    /// with a newly assembled matrix, and whether that solve asked for a
+    /// rebuild at the next assembly.
+    std::vector<double> viscosity_at_build;
+    unsigned int        iterations_after_build = 0;
+    bool                first_solve_with_matrix = false;
+    bool                rebuild_requested       = false;
+    unsigned int        n_builds                = 0;
+    double              viscosity_change        = 0;
 
     std::unique_ptr<TrilinosWrappers::PreconditionAMG>    velocity_amg;
     std::unique_ptr<TrilinosWrappers::PreconditionJacobi> mass_jacobi;
