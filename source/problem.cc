@@ -243,6 +243,10 @@ namespace viscofilm
         time_step = parameters.time_stepping.time_step; // enters no term at Res = 0
         solve_stokes(0);
         stokes.advance_time();
+        // No step led to u^0: the first step has no u^{-1} to extrapolate
+        // with, and statistics.csv's initial row no step length.
+        stokes.set_previous_time_step(0);
+        time_step = 0;
         stokes.invalidate_matrix();
       }
   }
