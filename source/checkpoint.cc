@@ -227,16 +227,24 @@ namespace viscofilm
     State              state;
     std::istringstream in(text);
     std::string        word, line;
-    in >> word >> state.step >> word >> state.time >> word >> state.previous_time_step >> word >>
-      state.detached_mass;
+    in >> word >> state.step >> word >> state.time;
     std::getline(in, line);
+    // "name value" lines of the state, then "parameter path = value" lines.
+    const std::map<std::string, double *> numbers = {
+      {"previous_time_step", &state.previous_time_step},
+      {"detached", &state.detached_mass},
+      {"next_time_step", &state.next_time_step}};
     std::map<std::string, std::string> saved;
     while (std::getline(in, line) && line != "snapshots")
-      if (line.rfind("next_time_step ", 0) == 0)
-        state.next_time_step = std::stod(line.substr(15));
-      else
-        saved[line.substr(10, line.find(" = ") - 10)] =
-          line.substr(line.find(" = ") + 3);
+      {
+        const std::string name   = line.substr(0, line.find(' '));
+        const auto        number = numbers.find(name);
+        if (number != numbers.end())
+          *number->second = std::stod(line.substr(name.size() + 1));
+        else
+          saved[line.substr(10, line.find(" = ") - 10)] =
+            line.substr(line.find(" = ") + 3);
+      }
     for (const auto &[path, value] : critical_entries(prm))
       {
         const auto entry = saved.find(path);
