@@ -277,10 +277,12 @@ namespace viscofilm
   PointEvaluator::evaluate<1>(const CellEvaluation<1> &) const;
   template std::vector<std::array<double, 3>>
   PointEvaluator::evaluate<3>(const CellEvaluation<3> &) const;
-  template std::vector<std::array<double, 4>>
-  PointEvaluator::evaluate<4>(const CellEvaluation<4> &) const;
-  template std::vector<std::array<double, 6>>
-  PointEvaluator::evaluate<6>(const CellEvaluation<6> &) const;
+  // c and the evaluating rank (ElasticStress); u and ∇u.
+  template std::vector<std::array<double, n_symmetric_components + 1>>
+  PointEvaluator::evaluate<n_symmetric_components + 1>(
+    const CellEvaluation<n_symmetric_components + 1> &) const;
+  template std::vector<std::array<double, n_velocity_values>>
+  PointEvaluator::evaluate<n_velocity_values>(const CellEvaluation<n_velocity_values> &) const;
 
 
   unsigned int
@@ -290,7 +292,7 @@ namespace viscofilm
   }
 
 
-  std::vector<std::array<double, 6>>
+  std::vector<std::array<double, n_velocity_values>>
   evaluate_velocity(const PointEvaluator &                    points,
                     const DoFHandler<dim> &                     stokes_dofs,
                     const TrilinosWrappers::MPI::BlockVector &stokes_solution)
@@ -300,10 +302,10 @@ namespace viscofilm
                                      update_values | update_gradients,
                                      0);
     std::vector<double> dof_values(stokes_dofs.get_fe().n_dofs_per_cell());
-    return points.evaluate<6>(
+    return points.evaluate<n_velocity_values>(
       [&](const Triangulation<dim>::active_cell_iterator &cell,
           const ArrayView<const Point<dim>> &             unit_points,
-          const ArrayView<std::array<double, 6>> &      values) {
+          const ArrayView<std::array<double, n_velocity_values>> & values) {
         cell_of(stokes_dofs, cell)->get_dof_values(stokes_solution, dof_values.begin(), dof_values.end());
         velocity.reinit(cell, unit_points);
         velocity.evaluate(dof_values,
@@ -312,7 +314,12 @@ namespace viscofilm
           {
             const Tensor<1, dim>               u    = velocity.get_value(q);
             const Tensor<1, dim, Tensor<1, dim>> grad = velocity.get_gradient(q);
-            values[q] = {{u[0], u[1], grad[0][0], grad[0][1], grad[1][0], grad[1][1]}};
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                values[q][d] = u[d];
+                for (unsigned int e = 0; e < dim; ++e)
+                  values[q][dim + dim * d + e] = grad[d][e];
+              }
           }
       });
   }

@@ -57,6 +57,12 @@ namespace viscofilm
   Geometry::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
+    prm.declare_entry("Dimension",
+                      "2",
+                      Patterns::Integer(2, 3),
+                      "Space dimension of the run: 2 or 3. Points are then "
+                      "written \"x, y\" or \"x, y, z\", and expressions use x, "
+                      "y (, z) and t.");
     prm.declare_entry("Mesh",
                       "channel",
                       Patterns::Selection("channel|channel with cylinder|gmsh"),
@@ -67,12 +73,12 @@ namespace viscofilm
                       "mesh in Mesh file; its boundaries are the physical "
                       "groups of its boundary lines, named as in the file.");
     prm.declare_entry("Lower left corner",
-                      "0, 0",
+                      dim == 2 ? "0, 0" : "0, 0, 0",
                       Patterns::Anything(),
                       "Corner (x, y) of the channel at the inlet and the bottom "
                       "wall, in units of L0 (1 cm).");
     prm.declare_entry("Upper right corner",
-                      "1, 1",
+                      dim == 2 ? "1, 1" : "1, 1, 1",
                       Patterns::Anything(),
                       "Corner (x, y) of the channel at the outlet and the top "
                       "wall. Must exceed the lower left corner in x and y.");
@@ -83,7 +89,7 @@ namespace viscofilm
                       "cells of edge min(width, height) for the channel). 5 "
                       "gives the thesis' Δx = 1/32 on the unit square.");
     prm.declare_entry("Cylinder centre",
-                      "0, 0",
+                      dim == 2 ? "0, 0" : "0, 0, 0",
                       Patterns::Anything(),
                       "Centre (x, y) of the cylinder (channel with cylinder).");
     prm.declare_entry("Cylinder radius",
@@ -105,6 +111,8 @@ namespace viscofilm
   Geometry::parse_parameters(ParameterHandler &prm, const std::string &directory)
   {
     prm.enter_subsection("Geometry");
+    // main() runs the program built for the Dimension asked for.
+    AssertThrow(prm.get_integer("Dimension") == dim, ExcInternalError());
     const std::string mesh_name = prm.get("Mesh");
     mesh = (mesh_name == "channel" ? Mesh::channel :
             mesh_name == "gmsh"    ? Mesh::gmsh :

@@ -447,7 +447,7 @@ namespace viscofilm
     for (unsigned int d = 0; d < dim; ++d)
       pixel_size[d] = sizes[sizes.size() == 1 ? 0 : d];
     origin = parse_point(origin_text, section + "Origin");
-    const Point<2> range = parse_point(range_text, section + "Intensity range");
+    const Point<2> range = parse_point<2>(range_text, section + "Intensity range");
     intensity_range      = {{range[0], range[1]}};
     check_input(map == Map::threshold || range[0] != range[1],
                 section + "Intensity range \"I0, I1\" needs I0 ≠ I1, got \"" +

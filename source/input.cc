@@ -45,15 +45,16 @@ namespace viscofilm
   }
 
 
-  Point<2>
+  template <int n>
+  Point<n>
   parse_point(const std::string &text, const std::string &parameter)
   {
-    const std::vector<std::string> parts =
-      Utilities::split_string_list(text, ',');
-    check_input(parts.size() == 2,
-                parameter + " must be a point \"x, y\", got \"" + text + "\"");
-    Point<2> p;
-    for (unsigned int d = 0; d < 2; ++d)
+    const std::string form = n == 2 ? "\"x, y\"" : "\"x, y, z\"";
+    const std::vector<std::string> parts = Utilities::split_string_list(text, ',');
+    check_input(parts.size() == n,
+                parameter + " must be a point " + form + ", got \"" + text + "\"");
+    Point<n> p;
+    for (unsigned int d = 0; d < n; ++d)
       {
         try
           {
@@ -62,18 +63,23 @@ namespace viscofilm
         catch (...)
           {
             check_input(false,
-                        parameter + " must be a point \"x, y\" of two numbers, got \"" +
-                          text + "\"");
+                        parameter + " must be a point " + form + " of " + std::to_string(n) +
+                          " numbers, got \"" + text + "\"");
           }
       }
     return p;
   }
 
+  template Point<2>
+  parse_point<2>(const std::string &, const std::string &);
+  template Point<3>
+  parse_point<3>(const std::string &, const std::string &);
 
-  std::vector<Point<2>>
+
+  std::vector<Point<dim>>
   parse_point_list(const std::string &text, const std::string &parameter)
   {
-    std::vector<Point<2>> points;
+    std::vector<Point<dim>> points;
     for (const std::string &item : Utilities::split_string_list(text, ';'))
       if (!item.empty())
         points.push_back(parse_point(item, parameter));
@@ -156,11 +162,17 @@ namespace viscofilm
     std::streambuf *const cerr_buffer = std::cerr.rdbuf(muparser_diagnosis.rdbuf());
     try
       {
-        parser = std::make_unique<FunctionParser<2>>(n_components);
-        parser->initialize("x,y,t", components, constants, /*time dependent*/ true);
+        parser = std::make_unique<FunctionParser<dim>>(n_components);
+        parser->initialize(FunctionParser<dim>::default_variable_names() + ",t",
+                           components,
+                           constants,
+                           /*time dependent*/ true);
         // muparser compiles lazily: evaluate once so errors surface here.
+        Point<dim> inside;
+        for (unsigned int d = 0; d < dim; ++d)
+          inside[d] = 0.5;
         Vector<double> values(n_components);
-        parser->vector_value(Point<2>(0.5, 0.5), values);
+        parser->vector_value(inside, values);
         std::cerr.rdbuf(cerr_buffer);
       }
     catch (const std::exception &e)
@@ -168,13 +180,14 @@ namespace viscofilm
         std::cerr.rdbuf(cerr_buffer);
         check_input(false,
                     parameter + " = \"" + text +
-                      "\" is not a valid expression in x, y, t and the "
+                      "\" is not a valid expression in " +
+                      (dim == 2 ? "x, y, t" : "x, y, z, t") + " and the "
                       "constants {" + constants_text + "}: " + error_message(e));
       }
   }
 
 
-  FunctionParser<2> &
+  FunctionParser<dim> &
   ParsedExpression::function() const
   {
     Assert(parser, ExcInternalError());

@@ -37,7 +37,7 @@ namespace viscofilm
 
 
     /// σ_xy and σ_vm at the points DataOut evaluates (2 subdivisions).
-    class LoadsPostprocessor : public DataPostprocessor<2>
+    class LoadsPostprocessor : public DataPostprocessor<dim>
     {
     public:
       LoadsPostprocessor(const Model &         model,
@@ -52,15 +52,15 @@ namespace viscofilm
       {}
 
       void
-      evaluate_vector_field(const DataPostprocessorInputs::Vector<2> &inputs,
+      evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &inputs,
                             std::vector<Vector<double>> &computed) const override
       {
         AssertThrow(inputs.solution_values.size() == points.size(),
                     ExcInternalError());
         // One per call: DataOut calls this from several threads.
-        TotalStress<FEValues<2>> total_stress(
+        TotalStress<FEValues<dim>> total_stress(
           points, model, stokes, volume_fraction, stress);
-        total_stress.reinit(inputs.template get_cell<2>());
+        total_stress.reinit(inputs.template get_cell<dim>());
         for (unsigned int q = 0; q < points.size(); ++q)
           {
             computed[q][0] = total_stress.sigma[q][0][1];
@@ -82,7 +82,7 @@ namespace viscofilm
 
     private:
       // DataOut's points for build_patches(2), in its order.
-      const QIterated<2>    points;
+      const QIterated<dim>    points;
       const Model &         model;
       const StokesSolver &  stokes;
       const VolumeFraction &volume_fraction;
@@ -215,10 +215,10 @@ namespace viscofilm
   void
   BiofilmLoads::add_statistics(CsvFile &statistics) const
   {
-    const QGauss<2> quadrature(3);
-    const QGauss<1> face_quadrature(3);
-    TotalStress<FEValues<2>>     cell_stress(quadrature, model, stokes, volume_fraction, stress);
-    TotalStress<FEFaceValues<2>> wall_stress(
+    const QGauss<dim> quadrature(3);
+    const QGauss<dim - 1> face_quadrature(3);
+    TotalStress<FEValues<dim>>     cell_stress(quadrature, model, stokes, volume_fraction, stress);
+    TotalStress<FEFaceValues<dim>> wall_stress(
       face_quadrature, model, stokes, volume_fraction, stress, update_normal_vectors);
     const double level = parameters.interface_level;
     const auto   is_wall = [this](const types::boundary_id id) {
@@ -256,11 +256,11 @@ namespace viscofilm
           const bool cut = (*low < level && *high > level);
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
-              const SymmetricTensor<2, 2> &sigma = cell_stress.sigma[q];
+              const SymmetricTensor<2, dim> &sigma = cell_stress.sigma[q];
               if (cut && cell_stress.grad_phi[q].norm() > 0)
                 {
                   // n points out of the biofilm: down the gradient of φ.
-                  const Tensor<1, 2> n =
+                  const Tensor<1, dim> n =
                     -cell_stress.grad_phi[q] / cell_stress.grad_phi[q].norm();
                   const double traction = (sigma * n).norm();
                   sums[2] += traction * cell_stress.JxW(q);
@@ -447,7 +447,7 @@ namespace viscofilm
 
 
   void
-  BiofilmLoads::add_output(DataOut<2> &data_out)
+  BiofilmLoads::add_output(DataOut<dim> &data_out)
   {
     data_out.add_data_vector(stokes.dof_handler(), stokes.solution(), *postprocessor);
   }

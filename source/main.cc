@@ -6,6 +6,8 @@
 #include <viscofilm/parameters.h>
 #include <viscofilm/problem.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -144,6 +146,49 @@ namespace
     parse_with_includes(prm, filename);
     parameters.parse_parameters(prm, directory);
   }
+
+
+  /// Geometry/Dimension of @p filename, or 0 where it cannot be read (the
+  /// run then says why).
+  int
+  requested_dimension(const std::string &filename)
+  {
+    try
+      {
+        dealii::ParameterHandler geometry_input;
+        viscofilm::Geometry::declare_parameters(geometry_input);
+        parse_with_includes(geometry_input, filename, true);
+        geometry_input.enter_subsection("Geometry");
+        return geometry_input.get_integer("Dimension");
+      }
+    catch (...)
+      {
+        return 0;
+      }
+  }
+
+
+  /// The program is built once per space dimension: viscofilm (2D) and
+  /// viscofilm-3d, side by side. A parameter file asking for the other
+  /// dimension is handed to the other program, before MPI starts (every rank
+  /// does the same). Returns only if there is nothing to hand over.
+  void
+  run_in_requested_dimension(char *argv[], const std::vector<std::string> &args)
+  {
+    if (args.empty() || args.back().rfind("-", 0) == 0)
+      return;
+    const int requested = requested_dimension(args.back());
+    if (requested == 0 || requested == viscofilm::dim)
+      return;
+    const std::filesystem::path program =
+      std::filesystem::read_symlink("/proc/self/exe").parent_path() /
+      (requested == 2 ? "viscofilm" : "viscofilm-3d");
+    execv(program.c_str(), argv);
+    std::cerr << "viscofilm: error in the input: Geometry/Dimension = " << requested
+              << " needs the program " << program.string()
+              << ", which could not be started (build it with cmake --build)" << std::endl;
+    std::exit(1);
+  }
 } // namespace
 
 
@@ -151,6 +196,7 @@ int
 main(int argc, char *argv[])
 {
   using namespace viscofilm;
+  run_in_requested_dimension(argv, std::vector<std::string>(argv + 1, argv + argc));
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const bool is_root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   const std::vector<std::string> args(argv + 1, argv + argc);

@@ -100,7 +100,7 @@ namespace viscofilm
 
 
   bool
-  MeshRefinement::flag_cells(parallel::distributed::Triangulation<2> &triangulation,
+  MeshRefinement::flag_cells(parallel::distributed::Triangulation<dim> &triangulation,
                              const VolumeFraction &volume_fraction,
                              const StokesSolver &  stokes,
                              const bool            coarsen,
@@ -112,9 +112,9 @@ namespace viscofilm
     if (max_velocity > 0)
       velocity_error = stokes.velocity_error_indicator();
 
-    const DoFHandler<2> &dofs = volume_fraction.dof_handler();
-    const Quadrature<2>  nodes(dofs.get_fe().get_unit_support_points());
-    FEValues<2>          fe_values(dofs.get_fe(), nodes, update_values);
+    const DoFHandler<dim> &dofs = volume_fraction.dof_handler();
+    const Quadrature<dim>  nodes(dofs.get_fe().get_unit_support_points());
+    FEValues<dim>          fe_values(dofs.get_fe(), nodes, update_values);
     std::vector<double>  phi;
     unsigned int         n_flagged = 0;
     for (const auto &cell : dofs.active_cell_iterators())

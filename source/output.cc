@@ -125,7 +125,7 @@ namespace viscofilm
 
 
   Output::Output(const Parameters &                             parameters,
-                 const parallel::distributed::Triangulation<2> &triangulation)
+                 const parallel::distributed::Triangulation<dim> &triangulation)
     : parameters(parameters)
     , triangulation(triangulation)
     , mpi_communicator(triangulation.get_communicator())
@@ -184,9 +184,9 @@ namespace viscofilm
   void
   Output::write_snapshot(const unsigned int                             step,
                          const double                                   time,
-                         const std::function<void(DataOut<2> &)> &add_fields)
+                         const std::function<void(DataOut<dim> &)> &add_fields)
   {
-    DataOut<2> data_out;
+    DataOut<dim> data_out;
     data_out.attach_triangulation(triangulation);
     add_fields(data_out);
     // Subdivide each cell once per polynomial degree: the Q2 nodes are kept.
@@ -244,9 +244,9 @@ namespace viscofilm
       {
         // Rank 0 asks for every probe; the others only answer.
         probe_cache.reinit(is_root ? parameters.probe_points :
-                                     std::vector<Point<2>>(),
+                                     std::vector<Point<dim>>(),
                            triangulation,
-                           StaticMappingQ1<2>::mapping);
+                           StaticMappingQ1<dim>::mapping);
         // Collective, so that no rank waits for one that threw.
         const bool all_found =
           Utilities::MPI::min(probe_cache.all_points_found() ? 1 : 0,
@@ -274,7 +274,7 @@ namespace viscofilm
         probes_file->set("v", uvp[i][1]);
         probes_file->set("p", uvp[i][2]);
         probes_file->set("volume_fraction", phi[i]);
-        const SymmetricTensor<2, 2> tau =
+        const SymmetricTensor<2, dim> tau =
           stress.stress_of(Vector<double>(c[i].begin_raw(), c[i].end_raw()), phi[i]);
         probes_file->set("tau_xx", tau[0][0]);
         probes_file->set("tau_xy", tau[0][1]);

@@ -24,8 +24,8 @@ namespace viscofilm
     // smoothing flags (island elimination) act on each rank's view of the
     // mesh and made the adapted mesh depend on the number of ranks.
     , triangulation(comm,
-                    Triangulation<2>::limit_level_difference_at_vertices,
-                    parallel::distributed::Triangulation<2>::default_setting)
+                    Triangulation<dim>::limit_level_difference_at_vertices,
+                    parallel::distributed::Triangulation<dim>::default_setting)
     , stokes(triangulation,
              parameters.stokes_solver,
              parameters.model,
@@ -207,7 +207,7 @@ namespace viscofilm
     // until it is resolved, soften, refine for the result and start again
     // from the input φ, until softening asks for no more cells. Only
     // refinement, so that this ends (at the maximum level at the latest).
-    const Function<2> &initial_phi =
+    const Function<dim> &initial_phi =
       parameters.initial_conditions.initial_volume_fraction();
     // An image has detail between φ's nodes: refine on its pixels too.
     const double resolution = parameters.initial_conditions.input_resolution();
@@ -261,9 +261,9 @@ namespace viscofilm
       &volume_fraction.dof_handler(),
       &volume_fraction.solution(),
       &parameters.verification.body_force.function(),
-      [this](const DoFHandler<2>::active_cell_iterator &cell,
+      [this](const DoFHandler<dim>::active_cell_iterator &cell,
              const std::vector<double> &                phi,
-             std::vector<SymmetricTensor<2, 2>> &       tau) {
+             std::vector<SymmetricTensor<2, dim>> &       tau) {
         stress.stress_at_quadrature_points(cell, phi, tau);
       }};
     {
@@ -452,7 +452,7 @@ namespace viscofilm
     TimerOutput::Scope t(*computing_timer, "output");
     output.write_probes(step, time, stokes, volume_fraction, stress);
     if (output.snapshot_due(step, last_step))
-      output.write_snapshot(step, time, [this](DataOut<2> &data_out) {
+      output.write_snapshot(step, time, [this](DataOut<dim> &data_out) {
         stokes.add_output(data_out);
         volume_fraction.add_output(data_out);
         stress.add_output(data_out, volume_fraction);

@@ -30,32 +30,49 @@ namespace viscofilm
 {
   namespace
   {
-    /// ∇·u, vorticity ∂v/∂x − ∂u/∂y and |u·∇u| from the Stokes solution.
-    class FlowPostprocessor : public DataPostprocessor<2>
+    /// ∇·u, the vorticity ∇×u (2D: the scalar ∂v/∂x − ∂u/∂y) and |u·∇u|
+    /// from the Stokes solution.
+    class FlowPostprocessor : public DataPostprocessor<dim>
     {
     public:
+      static constexpr unsigned int n_vorticity_components = dim == 2 ? 1 : dim;
+
       void
-      evaluate_vector_field(const DataPostprocessorInputs::Vector<2> &inputs,
+      evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &inputs,
                             std::vector<Vector<double>> &computed) const override
       {
         for (unsigned int q = 0; q < inputs.solution_values.size(); ++q)
           {
             const auto &   grad = inputs.solution_gradients[q];
-            const Tensor<1, 2> u({inputs.solution_values[q][0],
-                                  inputs.solution_values[q][1]});
-            Tensor<1, 2>   convection;
-            for (unsigned int i = 0; i < 2; ++i)
-              convection[i] = u * grad[i];
-            computed[q][0] = grad[0][0] + grad[1][1];
-            computed[q][1] = grad[1][0] - grad[0][1];
-            computed[q][2] = convection.norm();
+            Tensor<1, dim> u;
+            for (unsigned int d = 0; d < dim; ++d)
+              u[d] = inputs.solution_values[q][d];
+            Tensor<1, dim> convection;
+            double         divergence = 0;
+            for (unsigned int i = 0; i < dim; ++i)
+              {
+                convection[i] = u * grad[i];
+                divergence += grad[i][i];
+              }
+            computed[q][0] = divergence;
+            // (∇×u)_i = ∂_j u_k − ∂_k u_j for (i, j, k) cyclic; 2D: i = z.
+            for (unsigned int i = 0; i < n_vorticity_components; ++i)
+              {
+                const unsigned int j = (dim == 2 ? 0 : (i + 1) % 3), k = (j + 1) % dim;
+                computed[q][1 + i] = grad[k][j] - grad[j][k];
+              }
+            computed[q][1 + n_vorticity_components] = convection.norm();
           }
       }
 
       std::vector<std::string>
       get_names() const override
       {
-        return {"divergence", "vorticity", "inertia"};
+        std::vector<std::string> names = {"divergence"};
+        for (unsigned int i = 0; i < n_vorticity_components; ++i)
+          names.push_back(dim == 2 ? "vorticity" : std::string("vorticity_") + char('x' + i));
+        names.push_back("inertia");
+        return names;
       }
 
       UpdateFlags
@@ -170,12 +187,12 @@ namespace viscofilm
     }
 
 
-    std::unique_ptr<FiniteElement<2>>
+    std::unique_ptr<FiniteElement<dim>>
     pressure_element(const StokesSolver::PressureElement element)
     {
       if (element == StokesSolver::PressureElement::discontinuous)
-        return std::make_unique<FE_DGP<2>>(1);
-      return std::make_unique<FE_Q<2>>(1);
+        return std::make_unique<FE_DGP<dim>>(1);
+      return std::make_unique<FE_Q<dim>>(1);
     }
   } // namespace
 
@@ -363,7 +380,7 @@ namespace viscofilm
 
 
   StokesSolver::StokesSolver(
-    const parallel::distributed::Triangulation<2> &triangulation,
+    const parallel::distributed::Triangulation<dim> &triangulation,
     const Parameters &                             parameters,
     const Model &                                  model,
     const BoundaryConditions &                     boundary_conditions,
@@ -373,7 +390,7 @@ namespace viscofilm
     , model(model)
     , boundary_conditions(boundary_conditions)
     , mpi_communicator(triangulation.get_communicator())
-    , fe(FE_Q<2>(2), 2, *pressure_element(parameters.pressure_element), 1)
+    , fe(FE_Q<dim>(2), 2, *pressure_element(parameters.pressure_element), 1)
     , dofs(triangulation)
     , order(order)
     , flow_postprocessor(std::make_unique<FlowPostprocessor>())
@@ -421,15 +438,16 @@ namespace viscofilm
       }
     else
       {
-        Table<2, DoFTools::Coupling> coupling(3, 3);
-        Table<2, DoFTools::Coupling> mass_coupling(3, 3);
-        for (unsigned int c = 0; c < 3; ++c)
-          for (unsigned int d = 0; d < 3; ++d)
+        // Components 0 … dim − 1: u; dim: p.
+        Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
+        Table<2, DoFTools::Coupling> mass_coupling(dim + 1, dim + 1);
+        for (unsigned int c = 0; c < dim + 1; ++c)
+          for (unsigned int d = 0; d < dim + 1; ++d)
             {
-              coupling[c][d] = (c == 2 && d == 2) ? DoFTools::none :
-                                                    DoFTools::always;
-              mass_coupling[c][d] = (c == 2 && d == 2) ? DoFTools::always :
-                                                         DoFTools::none;
+              coupling[c][d] = (c == dim && d == dim) ? DoFTools::none :
+                                                        DoFTools::always;
+              mass_coupling[c][d] = (c == dim && d == dim) ? DoFTools::always :
+                                                             DoFTools::none;
             }
         TrilinosWrappers::BlockSparsityPattern sparsity(owned_partitioning,
                                                         owned_partitioning,
@@ -510,12 +528,12 @@ namespace viscofilm
       }
     system_rhs = 0;
 
-    const Quadrature<2> quadrature = this->quadrature();
-    FEValues<2>     fe_values(fe,
+    const Quadrature<dim> quadrature = this->quadrature();
+    FEValues<dim>     fe_values(fe,
                           quadrature,
                           update_values | update_gradients |
                             update_quadrature_points | update_JxW_values);
-    FEValues<2>     phi_fe_values(coefficients.volume_fraction_dof_handler->get_fe(),
+    FEValues<dim>     phi_fe_values(coefficients.volume_fraction_dof_handler->get_fe(),
                               quadrature,
                               update_values);
     // The prescribed normal traction −P n of pressure boundaries.
@@ -530,7 +548,7 @@ namespace viscofilm
     const unsigned int dofs_per_cell = fe.n_dofs_per_cell();
     const unsigned int n_q_points    = quadrature.size();
     const FEValuesExtractors::Vector velocities(0);
-    const FEValuesExtractors::Scalar pressure(2);
+    const FEValuesExtractors::Scalar pressure(dim);
 
     FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
     FullMatrix<double> cell_mass(dofs_per_cell, dofs_per_cell);
@@ -539,12 +557,12 @@ namespace viscofilm
 
     std::vector<double>                volume_fraction(n_q_points);
     std::vector<double>                viscosity(n_q_points);
-    std::vector<Tensor<1, 2>>          old_velocity(n_q_points);
+    std::vector<Tensor<1, dim>>          old_velocity(n_q_points);
     std::vector<Tensor<1, dim>>        older_velocity(n_q_points); // zero unless BDF2
-    std::vector<Vector<double>>        body_force(n_q_points, Vector<double>(2));
-    std::vector<SymmetricTensor<2, 2>> tau(n_q_points);
+    std::vector<Vector<double>>        body_force(n_q_points, Vector<double>(dim));
+    std::vector<SymmetricTensor<2, dim>> tau(n_q_points);
     std::vector<double>                elastic_viscosity(n_q_points, 0.0);
-    std::vector<SymmetricTensor<2, 2>> iterate_strain_rate(n_q_points);
+    std::vector<SymmetricTensor<2, dim>> iterate_strain_rate(n_q_points);
     const bool implicit_elastic =
       parameters.implicit_elastic_viscosity && model.viscoelastic;
     if (implicit_elastic && assemble_matrix)
@@ -566,8 +584,8 @@ namespace viscofilm
     const bool                         use_feet = !old_velocity_at_feet.empty();
     unsigned int                       foot     = 0;
 
-    std::vector<Tensor<1, 2>>          phi_u(dofs_per_cell);
-    std::vector<SymmetricTensor<2, 2>> symgrad_phi_u(dofs_per_cell);
+    std::vector<Tensor<1, dim>>          phi_u(dofs_per_cell);
+    std::vector<SymmetricTensor<2, dim>> symgrad_phi_u(dofs_per_cell);
     std::vector<double>                div_phi_u(dofs_per_cell);
     std::vector<double>                phi_p(dofs_per_cell);
 
@@ -667,14 +685,16 @@ namespace viscofilm
                   phi_p[k]         = fe_values[pressure].value(k, q);
                 }
               const double       JxW = fe_values.JxW(q);
-              const Tensor<1, 2> force({body_force[q][0], body_force[q][1]});
-              const Tensor<1, 2> rhs_vector =
+              Tensor<1, dim> force;
+              for (unsigned int d = 0; d < dim; ++d)
+                force[d] = body_force[q][d];
+              const Tensor<1, dim> rhs_vector =
                 old_coefficient * old_velocity[q] + force -
                 older_coefficient * older_velocity[q];
               // s(φ) τ: φ τ in the thesis (eq. 2.34), τ for phases.
               // With the implicit elastic viscosity η_e in the matrix, its
               // explicit twin 2 η_e D(u^l) joins s τ on the right.
-              const SymmetricTensor<2, 2> phi_tau =
+              const SymmetricTensor<2, dim> phi_tau =
                 model.stress_coupling(volume_fraction[q]) * tau[q] -
                 2 * elastic_viscosity[q] * iterate_strain_rate[q];
 
@@ -773,10 +793,10 @@ namespace viscofilm
   }
 
 
-  Quadrature<2>
+  Quadrature<dim>
   StokesSolver::quadrature() const
   {
-    return QGauss<2>(fe.degree + 1);
+    return QGauss<dim>(fe.degree + 1);
   }
 
 
@@ -788,14 +808,14 @@ namespace viscofilm
     previous_velocity_at_feet.clear();
     if (model.density == 0)
       return;
-    FEValues<2> fe_values(fe, quadrature(), update_quadrature_points);
-    std::vector<Point<2>>                               points;
-    std::vector<Triangulation<2>::active_cell_iterator> cells;
+    FEValues<dim> fe_values(fe, quadrature(), update_quadrature_points);
+    std::vector<Point<dim>>                               points;
+    std::vector<Triangulation<dim>::active_cell_iterator> cells;
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
-          for (const Point<2> &p : fe_values.get_quadrature_points())
+          for (const Point<dim> &p : fe_values.get_quadrature_points())
             {
               points.push_back(p);
               cells.push_back(cell);
@@ -814,7 +834,12 @@ namespace viscofilm
                                 old_solution,
                    duration);
       for (const auto &value : evaluate_velocity(feet.at_feet(), dofs, values))
-        result.emplace_back(Tensor<1, 2>({value[0], value[1]}));
+        {
+          Tensor<1, dim> u;
+          for (unsigned int d = 0; d < dim; ++d)
+            u[d] = value[d];
+          result.push_back(u);
+        }
     };
     at_feet(time_step, old_solution, old_velocity_at_feet);
     if (order == 2 && previous_step > 0)
@@ -1041,12 +1066,12 @@ namespace viscofilm
       return;
     current_solution = distributed;
     const double mean_pressure =
-      VectorTools::compute_mean_value(dofs, QGauss<2>(3), current_solution, 2);
+      VectorTools::compute_mean_value(dofs, QGauss<dim>(3), current_solution, dim);
     // The dofs whose shape functions sum to 1: all of Q1's, the cell mean
     // of P1disc's (its slopes must stay).
     std::vector<std::vector<bool>> constant_modes;
     DoFTools::extract_constant_modes(dofs,
-                                     fe.component_mask(FEValuesExtractors::Scalar(2)),
+                                     fe.component_mask(FEValuesExtractors::Scalar(dim)),
                                      constant_modes);
     const IndexSet &owned_pressure = owned_partitioning[1];
     for (unsigned int i = 0; i < owned_pressure.n_elements(); ++i)
@@ -1146,7 +1171,7 @@ namespace viscofilm
   }
 
 
-  const DoFHandler<2> &
+  const DoFHandler<dim> &
   StokesSolver::dof_handler() const
   {
     return dofs;
@@ -1168,7 +1193,7 @@ namespace viscofilm
 
 
   void
-  StokesSolver::add_output(DataOut<2> &data_out) const
+  StokesSolver::add_output(DataOut<dim> &data_out) const
   {
     const std::vector<std::string> names = {"velocity", "velocity", "pressure"};
     const std::vector<DataComponentInterpretation::DataComponentInterpretation>
@@ -1183,9 +1208,9 @@ namespace viscofilm
   double
   StokesSolver::max_velocity() const
   {
-    const Quadrature<2> nodes(fe.base_element(0).get_unit_support_points());
-    FEValues<2>         fe_values(fe, nodes, update_values);
-    std::vector<Tensor<1, 2>> velocity(nodes.size());
+    const Quadrature<dim> nodes(fe.base_element(0).get_unit_support_points());
+    FEValues<dim>         fe_values(fe, nodes, update_values);
+    std::vector<Tensor<1, dim>> velocity(nodes.size());
     const FEValuesExtractors::Vector velocities(0);
     double                    max_speed = 0;
     for (const auto &cell : dofs.active_cell_iterators())
@@ -1193,7 +1218,7 @@ namespace viscofilm
         {
           fe_values.reinit(cell);
           fe_values[velocities].get_function_values(current_solution, velocity);
-          for (const Tensor<1, 2> &u : velocity)
+          for (const Tensor<1, dim> &u : velocity)
             max_speed = std::max(max_speed, u.norm());
         }
     return Utilities::MPI::max(max_speed, mpi_communicator);
@@ -1203,8 +1228,8 @@ namespace viscofilm
   double
   StokesSolver::max_cell_divergence() const
   {
-    const QGauss<2>                  quadrature(fe.degree + 1);
-    FEValues<2>                      fe_values(fe, quadrature, update_gradients | update_JxW_values);
+    const QGauss<dim>                  quadrature(fe.degree + 1);
+    FEValues<dim>                      fe_values(fe, quadrature, update_gradients | update_JxW_values);
     std::vector<double>              divergence(quadrature.size());
     const FEValuesExtractors::Vector velocities(0);
     double                           max_divergence = 0;
@@ -1226,8 +1251,8 @@ namespace viscofilm
   StokesSolver::velocity_error_indicator() const
   {
     Vector<float> indicator(triangulation.n_active_cells());
-    KellyErrorEstimator<2>::estimate(dofs,
-                                     QGauss<1>(fe.degree + 1),
+    KellyErrorEstimator<dim>::estimate(dofs,
+                                     QGauss<dim - 1>(fe.degree + 1),
                                      {},
                                      current_solution,
                                      indicator,
@@ -1242,10 +1267,10 @@ namespace viscofilm
   {
     // ‖u − u_prev‖_L2 / ‖u‖_L2: the velocity alone, as the pressure's size
     // (which grows with the viscosity) says nothing about the flow's change.
-    FEValues<2> fe_values(fe, quadrature(), update_values | update_JxW_values);
+    FEValues<dim> fe_values(fe, quadrature(), update_values | update_JxW_values);
     const FEValuesExtractors::Vector velocities(0);
-    std::vector<Tensor<1, 2>>        now(fe_values.n_quadrature_points);
-    std::vector<Tensor<1, 2>>        before(fe_values.n_quadrature_points);
+    std::vector<Tensor<1, dim>>        now(fe_values.n_quadrature_points);
+    std::vector<Tensor<1, dim>>        before(fe_values.n_quadrature_points);
     double                           squares[2] = {0, 0}; // change, size
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())

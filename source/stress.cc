@@ -47,18 +47,9 @@ namespace viscofilm
     }
 
 
-    /// Smallest eigenvalue of the symmetric 2x2 matrix (xx, xy, yy).
-    double
-    smallest_eigenvalue(const double xx, const double xy, const double yy)
-    {
-      const double mean = 0.5 * (xx + yy);
-      const double half = 0.5 * (xx - yy);
-      return mean - std::sqrt(half * half + xy * xy);
-    }
-
     /// τ = Model::stress(c, φ) as output fields; φ is evaluated at the
     /// output points only where τ depends on it (Rheology = phases).
-    class StressPostprocessor : public DataPostprocessor<2>
+    class StressPostprocessor : public DataPostprocessor<dim>
     {
     public:
       StressPostprocessor(const ElasticStress &stress, const VolumeFraction &volume_fraction)
@@ -67,38 +58,43 @@ namespace viscofilm
       {}
 
       void
-      evaluate_vector_field(const DataPostprocessorInputs::Vector<2> &inputs,
+      evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &inputs,
                             std::vector<Vector<double>> &computed) const override
       {
         const unsigned int  n = inputs.solution_values.size();
         std::vector<double> phi(n, 0.0);
         if (stress.stress_depends_on_volume_fraction())
           {
-            const auto cell = inputs.template get_cell<2>();
-            std::vector<Point<2>> unit_points(n);
+            const auto cell = inputs.template get_cell<dim>();
+            std::vector<Point<dim>> unit_points(n);
             for (unsigned int q = 0; q < n; ++q)
-              unit_points[q] = StaticMappingQ1<2>::mapping.transform_real_to_unit_cell(
+              unit_points[q] = StaticMappingQ1<dim>::mapping.transform_real_to_unit_cell(
                 cell, inputs.evaluation_points[q]);
-            FEValues<2> phi_values(volume_fraction.dof_handler().get_fe(),
-                                   Quadrature<2>(unit_points),
+            FEValues<dim> phi_values(volume_fraction.dof_handler().get_fe(),
+                                   Quadrature<dim>(unit_points),
                                    update_values);
             phi_values.reinit(cell_of(volume_fraction.dof_handler(), cell));
             phi_values.get_function_values(volume_fraction.solution(), phi);
           }
         for (unsigned int q = 0; q < n; ++q)
           {
-            const SymmetricTensor<2, 2> tau =
+            const SymmetricTensor<2, dim> tau =
               stress.stress_of(inputs.solution_values[q], phi[q]);
-            computed[q][0] = tau[0][0];
-            computed[q][1] = tau[0][1];
-            computed[q][2] = tau[1][1];
+            for (unsigned int k = 0; k < n_symmetric_components; ++k)
+              {
+                const auto [i, j] = symmetric_component(k);
+                computed[q][k]    = tau[i][j];
+              }
           }
       }
 
       std::vector<std::string>
       get_names() const override
       {
-        return {"tau_xx", "tau_xy", "tau_yy"};
+        std::vector<std::string> names;
+        for (unsigned int k = 0; k < n_symmetric_components; ++k)
+          names.push_back("tau_" + symmetric_component_name(k));
+        return names;
       }
 
       UpdateFlags
@@ -169,7 +165,7 @@ namespace viscofilm
 
 
   ElasticStress::ElasticStress(
-    const parallel::distributed::Triangulation<2> &triangulation,
+    const parallel::distributed::Triangulation<dim> &triangulation,
     const Parameters &                             parameters,
     const Model &                                  model,
     const BoundaryConditions &                     boundary_conditions,
@@ -180,9 +176,9 @@ namespace viscofilm
     , boundary_conditions(boundary_conditions)
     , order(order)
     , fe(parameters.discontinuous ?
-           static_cast<const FiniteElement<2> &>(FE_DGQ<2>(2)) :
-           static_cast<const FiniteElement<2> &>(FE_Q<2>(2)),
-         3)
+           static_cast<const FiniteElement<dim> &>(FE_DGQ<dim>(2)) :
+           static_cast<const FiniteElement<dim> &>(FE_Q<dim>(2)),
+         n_symmetric_components)
     , dofs(triangulation)
   {}
 
@@ -191,9 +187,7 @@ namespace viscofilm
   ElasticStress::stress_of(const Vector<double> &conformation,
                            const double          volume_fraction) const
   {
-    return model.stress(SymmetricTensor<2, dim>(
-                          {conformation[0], conformation[2], conformation[1]}),
-                        volume_fraction);
+    return model.stress(symmetric_tensor(conformation), volume_fraction);
   }
 
 
@@ -205,7 +199,7 @@ namespace viscofilm
 
 
   void
-  ElasticStress::setup_dofs(const Quadrature<2> &quadrature)
+  ElasticStress::setup_dofs(const Quadrature<dim> &quadrature)
   {
     const MPI_Comm comm = triangulation.get_communicator();
     dofs.distribute_dofs(fe);
@@ -220,11 +214,15 @@ namespace viscofilm
     hanging_node_constraints.close();
     stokes_quadrature = quadrature;
 
-    const std::vector<Point<2>> &unit_support =
+    const std::vector<Point<dim>> &unit_support =
       fe.base_element(0).get_unit_support_points();
     for (unsigned int k = 0; k < unit_support.size(); ++k)
-      lexicographic_node[std::lround(2 * unit_support[k][0])]
-                        [std::lround(2 * unit_support[k][1])] = k;
+      {
+        unsigned int index = 0;
+        for (unsigned int d = 0, stride = 1; d < dim; ++d, stride *= 3)
+          index += std::lround(2 * unit_support[k][d]) * stride;
+        lexicographic_node[index] = k;
+      }
 
     nodes.clear();
     node_of_owned_dof.assign(owned.n_elements(), numbers::invalid_unsigned_int);
@@ -242,7 +240,7 @@ namespace viscofilm
                 continue;
               node_of_owned_dof[owned.index_within_set(dof)] = nodes.size();
               Node node;
-              node.position = StaticMappingQ1<2>::mapping.transform_unit_to_real_cell(
+              node.position = StaticMappingQ1<dim>::mapping.transform_unit_to_real_cell(
                 cell, unit_support[k]);
               node.cell = cell;
               for (unsigned int c = 0; c < 3; ++c)
@@ -251,12 +249,12 @@ namespace viscofilm
             }
         }
 
-    quadrature_values = std::make_unique<FEValues<2>>(fe, quadrature, update_values);
+    quadrature_values = std::make_unique<FEValues<dim>>(fe, quadrature, update_values);
   }
 
 
   void
-  ElasticStress::set_initial_conditions(const Function<2> &    initial_stress,
+  ElasticStress::set_initial_conditions(const Function<dim> &    initial_stress,
                                         const VolumeFraction &volume_fraction)
   {
     const std::vector<double> phi = nodal_volume_fraction(volume_fraction);
@@ -264,22 +262,20 @@ namespace viscofilm
                                               triangulation.get_communicator());
     // Without elastic stress τ ≡ 0 (c = shift I) whatever the input says:
     // nothing updates c then, so a non-zero τ0 would act on the flow for ever.
-    Vector<double> tau(3);
+    Vector<double> tau(n_symmetric_components);
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
         const Node &node = nodes[i];
         // A discontinuous c takes its own cell's limit of τ0 on the cell's
         // boundary, so that a τ0 jumping across a face is kept.
-        const Point<2> inside =
+        const Point<dim> inside =
           parameters.discontinuous ?
             node.position + 1e-10 * (node.cell->center() - node.position) :
             node.position;
         if (model.viscoelastic)
           initial_stress.vector_value(inside, tau);
         const SymmetricTensor<2, dim> c = conformation(tau, phi[i]);
-        distributed[node.dofs[0]]       = c[0][0];
-        distributed[node.dofs[1]]       = c[0][1];
-        distributed[node.dofs[2]]       = c[1][1];
+        set_conformation(node, c, distributed);
       }
     distributed.compress(VectorOperation::insert);
     hanging_node_constraints.distribute(distributed);
@@ -293,7 +289,7 @@ namespace viscofilm
   ElasticStress::conformation(const Vector<double> &tau, const double phi) const
   {
     AssertDimension(tau.size(), n_symmetric_components);
-    return model.conformation(SymmetricTensor<2, dim>({tau[0], tau[2], tau[1]}), phi);
+    return model.conformation(symmetric_tensor(tau), phi);
   }
 
 
@@ -304,8 +300,8 @@ namespace viscofilm
                             const double          time,
                             const double          time_step)
   {
-    std::vector<Point<2>>                               points(nodes.size());
-    std::vector<Triangulation<2>::active_cell_iterator> cells(nodes.size());
+    std::vector<Point<dim>>                               points(nodes.size());
+    std::vector<Triangulation<dim>::active_cell_iterator> cells(nodes.size());
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
         points[i] = nodes[i].position;
@@ -324,43 +320,57 @@ namespace viscofilm
     const double       this_rank = Utilities::MPI::this_mpi_process(comm);
     const bool         guard     = parameters.positivity_safe_feet && model.relaxed_conformation() > 0;
     unsigned int       fixes     = 0;
-    FEPointEvaluation<3, 2> conformation(StaticMappingQ1<2>::mapping, fe, update_values, 0);
+    FEPointEvaluation<n_symmetric_components, dim> conformation(StaticMappingQ1<dim>::mapping, fe, update_values, 0);
     std::vector<double>     cell_values(fe.n_dofs_per_cell());
 
-    const CellEvaluation<4> evaluate =
-      [&](const Triangulation<2>::active_cell_iterator &cell,
-          const ArrayView<const Point<2>> &             unit_points,
-          const ArrayView<std::array<double, 4>> &      values) {
+    // The foot's c, and the rank that evaluated it (to count remote feet).
+    constexpr unsigned int                     n_values = n_symmetric_components + 1;
+    const CellEvaluation<n_values> evaluate =
+      [&](const Triangulation<dim>::active_cell_iterator &cell,
+          const ArrayView<const Point<dim>> &             unit_points,
+          const ArrayView<std::array<double, n_values>> & values) {
         cell_of(dofs, cell)->get_dof_values(old, cell_values.begin(), cell_values.end());
         conformation.reinit(cell, unit_points);
         conformation.evaluate(cell_values, EvaluationFlags::values);
         for (unsigned int q = 0; q < unit_points.size(); ++q)
           {
-            Tensor<1, 3> c = conformation.get_value(q);
-            if (guard && smallest_eigenvalue(c[0], c[1], c[2]) <= 0)
+            Tensor<1, n_symmetric_components> c = conformation.get_value(q);
+            if (guard && smallest_eigenvalue(symmetric_tensor(c)) <= 0)
               {
-                // Bilinear interpolation on the Q1 sub-cell of the Q2 nodes.
-                const Point<2> &p  = unit_points[q];
-                const unsigned  ix = p[0] < 0.5 ? 0 : 1, iy = p[1] < 0.5 ? 0 : 1;
-                const double    xi  = std::clamp(2 * p[0] - ix, 0.0, 1.0);
-                const double    eta = std::clamp(2 * p[1] - iy, 0.0, 1.0);
-                const double weight[2][2] = {{(1 - xi) * (1 - eta), (1 - xi) * eta},
-                                             {xi * (1 - eta), xi * eta}};
+                // Multilinear interpolation on the Q1 sub-cell of the Q2 nodes.
+                const Point<dim> &p = unit_points[q];
+                unsigned int      corner[dim];
+                double            xi[dim];
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    corner[d] = p[d] < 0.5 ? 0 : 1;
+                    xi[d]     = std::clamp(2 * p[d] - corner[d], 0.0, 1.0);
+                  }
                 c = 0;
-                for (unsigned int a = 0; a < 2; ++a)
-                  for (unsigned int b = 0; b < 2; ++b)
-                    for (unsigned int component = 0; component < 3; ++component)
-                      c[component] +=
-                        weight[a][b] *
-                        cell_values[fe.component_to_system_index(
-                          component, lexicographic_node[ix + a][iy + b])];
+                for (const unsigned int v : GeometryInfo<dim>::vertex_indices())
+                  {
+                    double       weight = 1;
+                    unsigned int node = 0, stride = 1;
+                    for (unsigned int d = 0; d < dim; ++d, stride *= 3)
+                      {
+                        const unsigned int offset = (v >> d) & 1;
+                        weight *= offset ? xi[d] : 1 - xi[d];
+                        node += (corner[d] + offset) * stride;
+                      }
+                    for (unsigned int component = 0; component < n_symmetric_components;
+                         ++component)
+                      c[component] += weight * cell_values[fe.component_to_system_index(
+                                                 component, lexicographic_node[node])];
+                  }
                 ++fixes;
               }
-            values[q] = {{c[0], c[1], c[2], this_rank}};
+            for (unsigned int component = 0; component < n_symmetric_components; ++component)
+              values[q][component] = c[component];
+            values[q][n_symmetric_components] = this_rank;
           }
       };
 
-    const auto   values = feet.at_feet().evaluate<4>(evaluate);
+    const auto   values = feet.at_feet().evaluate<n_values>(evaluate);
     const std::vector<types::boundary_id> &inflow   = feet.inflow_boundaries();
     const std::vector<Point<dim>> &        at_feet  = feet.at_feet().located_points();
     unsigned int                           remote   = 0;
@@ -381,8 +391,8 @@ namespace viscofilm
           }
         else
           nodes[i].foot_conformation =
-            SymmetricTensor<2, 2>({v[0], v[2], v[1]}); // (xx, yy, xy)
-        if (v[3] != this_rank)
+            symmetric_tensor(v);
+        if (v[n_symmetric_components] != this_rank)
           ++remote;
       }
     remote_feet      = Utilities::MPI::sum(remote, comm);
@@ -435,7 +445,7 @@ namespace viscofilm
   {
     // Ghost cells too: a continuous node on a rank boundary sees all of its
     // cells.
-    const Quadrature<2> at_nodes(fe.base_element(0).get_unit_support_points());
+    const Quadrature<dim> at_nodes(fe.base_element(0).get_unit_support_points());
     std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
     std::vector<unsigned int>            node_of_support(at_nodes.size());
     const IndexSet &                     owned = dofs.locally_owned_dofs();
@@ -458,14 +468,14 @@ namespace viscofilm
   std::vector<Tensor<2, dim>>
   ElasticStress::nodal_velocity_gradient(const StokesSolver &stokes) const
   {
-    const Quadrature<2> at_nodes(fe.base_element(0).get_unit_support_points());
-    FEValues<2> stokes_values(stokes.dof_handler().get_fe(), at_nodes, update_gradients);
+    const Quadrature<dim> at_nodes(fe.base_element(0).get_unit_support_points());
+    FEValues<dim> stokes_values(stokes.dof_handler().get_fe(), at_nodes, update_gradients);
     const FEValuesExtractors::Vector velocities(0);
-    std::vector<Tensor<2, 2>>        gradients(at_nodes.size());
-    std::vector<Tensor<2, 2>>        velocity_gradient(nodes.size());
+    std::vector<Tensor<2, dim>>        gradients(at_nodes.size());
+    std::vector<Tensor<2, dim>>        velocity_gradient(nodes.size());
     std::vector<unsigned int>        n_cells(nodes.size(), 0);
-    for_each_node_on_cells([&](const DoFHandler<2>::active_cell_iterator &cell,
-                               const Quadrature<2> &,
+    for_each_node_on_cells([&](const DoFHandler<dim>::active_cell_iterator &cell,
+                               const Quadrature<dim> &,
                                const std::vector<unsigned int> &node_of_support) {
       stokes_values.reinit(cell_of(stokes.dof_handler(), cell));
       stokes_values[velocities].get_function_gradients(stokes.solution(), gradients);
@@ -485,12 +495,12 @@ namespace viscofilm
   std::vector<double>
   ElasticStress::nodal_volume_fraction(const VolumeFraction &volume_fraction) const
   {
-    const Quadrature<2> at_nodes(fe.base_element(0).get_unit_support_points());
-    FEValues<2> phi_values(volume_fraction.dof_handler().get_fe(), at_nodes, update_values);
+    const Quadrature<dim> at_nodes(fe.base_element(0).get_unit_support_points());
+    FEValues<dim> phi_values(volume_fraction.dof_handler().get_fe(), at_nodes, update_values);
     std::vector<double> phis(at_nodes.size());
     std::vector<double> phi(nodes.size(), 0.0);
-    for_each_node_on_cells([&](const DoFHandler<2>::active_cell_iterator &cell,
-                               const Quadrature<2> &,
+    for_each_node_on_cells([&](const DoFHandler<dim>::active_cell_iterator &cell,
+                               const Quadrature<dim> &,
                                const std::vector<unsigned int> &node_of_support) {
       phi_values.reinit(cell_of(volume_fraction.dof_handler(), cell));
       phi_values.get_function_values(volume_fraction.solution(), phis);
@@ -507,12 +517,12 @@ namespace viscofilm
                         const VolumeFraction &volume_fraction,
                         const double          time_step)
   {
-    const std::vector<Tensor<2, 2>> velocity_gradient = nodal_velocity_gradient(stokes);
+    const std::vector<Tensor<2, dim>> velocity_gradient = nodal_velocity_gradient(stokes);
     const std::vector<double>       phi = nodal_volume_fraction(volume_fraction);
 
     const double a     = model.slip_parameter;
     const double k     = time_step;
-    const Tensor<2, 2> identity = unit_symmetric_tensor<2>();
+    const Tensor<2, dim> identity = unit_symmetric_tensor<dim>();
     // Φ = (a+1)/2 ∇u + (a−1)/2 ∇uᵀ (eq. 3.41); the Cayley transform of kΦ,
     // (I − kΦ/2)^{-1}(I + kΦ/2), is orthogonal for a skew kΦ.
     const auto deformation_rate = [a](const Tensor<2, dim> &L) {
@@ -528,17 +538,17 @@ namespace viscofilm
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
         // E = (I − kΦ)^{-1} (eq. 3.42) or its Cayley form.
-        const Tensor<2, 2> Phi = deformation_rate(velocity_gradient[i]);
-        const Tensor<2, 2> E =
+        const Tensor<2, dim> Phi = deformation_rate(velocity_gradient[i]);
+        const Tensor<2, dim> E =
           parameters.cayley ? cayley(k * Phi) : invert(identity - k * Phi);
         const Model::Relaxation r =
           model.relaxation(order == 2 ? nodes[i].foot_volume_fraction : phi[i]);
-        const Tensor<2, 2>      c_foot(nodes[i].foot_conformation);
+        const Tensor<2, dim>      c_foot(nodes[i].foot_conformation);
         // c^{n+1} = (w E c(y) Eᵀ + kβ I) / (w + kα)   (thesis: w = φ, eq. 3.44)
-        const SymmetricTensor<2, 2> c_first =
+        const SymmetricTensor<2, dim> c_first =
           symmetrize((r.weight * E * c_foot * transpose(E) + k * r.beta * identity) /
                      (r.weight + k * r.alpha));
-        SymmetricTensor<2, 2> c = c_first;
+        SymmetricTensor<2, dim> c = c_first;
         if (order == 2)
           {
             // Along the characteristic w c' = w (Φc + cΦᵀ) + β I − α c has,
@@ -568,9 +578,7 @@ namespace viscofilm
                                         .norm());
             largest[2] = std::max(largest[2], G * std::abs(model.relaxed_conformation()));
           }
-        distributed[nodes[i].dofs[0]] = c[0][0];
-        distributed[nodes[i].dofs[1]] = c[0][1];
-        distributed[nodes[i].dofs[2]] = c[1][1];
+        set_conformation(nodes[i], c, distributed);
       }
     distributed.compress(VectorOperation::insert);
     Utilities::MPI::max(largest, triangulation.get_communicator(), largest);
@@ -591,17 +599,30 @@ namespace viscofilm
   {
     // ‖Δτ‖_L2 / ‖τ‖_L2 with the Frobenius norm; Δτ = G Δc, but τ's own size,
     // not c's (which includes the relaxed state), is the scale.
-    FEValues<2> fe_values(fe, stokes_quadrature, update_values | update_JxW_values);
-    FEValues<2> phi_values(volume_fraction.dof_handler().get_fe(),
+    FEValues<dim> fe_values(fe, stokes_quadrature, update_values | update_JxW_values);
+    FEValues<dim> phi_values(volume_fraction.dof_handler().get_fe(),
                            stokes_quadrature,
                            update_values);
-    std::vector<Vector<double>> now(stokes_quadrature.size(), Vector<double>(3));
-    std::vector<Vector<double>> before(stokes_quadrature.size(), Vector<double>(3));
+    std::vector<Vector<double>> now(stokes_quadrature.size(),
+                                    Vector<double>(n_symmetric_components));
+    std::vector<Vector<double>> before(stokes_quadrature.size(),
+                                       Vector<double>(n_symmetric_components));
     std::vector<double>         phi(stokes_quadrature.size());
     const double                rest = model.relaxed_conformation();
-    const auto frobenius_square = [](const double xx, const double xy, const double yy) {
-      return xx * xx + 2 * xy * xy + yy * yy;
-    };
+    // ‖G (a − b)‖_F² of two tensors given by their stored components, with
+    // b's diagonal shifted by @p shift.
+    const auto frobenius_square =
+      [](const double G, const Vector<double> &a, const Vector<double> &b, const double shift) {
+        double square = 0;
+        for (unsigned int k = 0; k < n_symmetric_components; ++k)
+          {
+            const auto [i, j]    = symmetric_component(k);
+            const double entry   = G * (a[k] - (i == j ? b[k] + shift : b[k]));
+            square += (i == j ? 1 : 2) * entry * entry;
+          }
+        return square;
+      };
+    const Vector<double> zero(n_symmetric_components);
     double squares[2] = {0, 0}; // change, size
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -614,14 +635,8 @@ namespace viscofilm
           for (unsigned int q = 0; q < now.size(); ++q)
             {
               const double G = model.stress_modulus(phi[q]);
-              squares[0] += frobenius_square(G * (now[q][0] - before[q][0]),
-                                             G * (now[q][1] - before[q][1]),
-                                             G * (now[q][2] - before[q][2])) *
-                            fe_values.JxW(q);
-              squares[1] += frobenius_square(G * (now[q][0] - rest),
-                                             G * now[q][1],
-                                             G * (now[q][2] - rest)) *
-                            fe_values.JxW(q);
+              squares[0] += frobenius_square(G, now[q], before[q], 0) * fe_values.JxW(q);
+              squares[1] += frobenius_square(G, now[q], zero, rest) * fe_values.JxW(q);
             }
         }
     Utilities::MPI::sum(squares, triangulation.get_communicator(), squares);
@@ -641,15 +656,14 @@ namespace viscofilm
         const double floor = parameters.positivity_floor * model.relaxed_conformation();
         for (const Node &node : nodes)
           {
-            const double smallest = smallest_eigenvalue(distributed[node.dofs[0]],
-                                                        distributed[node.dofs[1]],
-                                                        distributed[node.dofs[2]]);
+            const SymmetricTensor<2, dim> c        = conformation_at(node, distributed);
+            const double                  smallest = smallest_eigenvalue(c);
             if (smallest < floor)
               {
                 // Written, not added: every rank compresses with insert.
-                const double lift          = floor - smallest;
-                distributed[node.dofs[0]] = distributed[node.dofs[0]] + lift;
-                distributed[node.dofs[2]] = distributed[node.dofs[2]] + lift;
+                set_conformation(node,
+                                 c + (floor - smallest) * unit_symmetric_tensor<dim>(),
+                                 distributed);
                 ++repairs;
               }
           }
@@ -661,15 +675,41 @@ namespace viscofilm
 
   void
   ElasticStress::stress_at_quadrature_points(
-    const DoFHandler<2>::active_cell_iterator &cell,
+    const DoFHandler<dim>::active_cell_iterator &cell,
     const std::vector<double> &                volume_fraction,
-    std::vector<SymmetricTensor<2, 2>> &       tau) const
+    std::vector<SymmetricTensor<2, dim>> &       tau) const
   {
     quadrature_values->reinit(cell_of(dofs, cell));
-    std::vector<Vector<double>> c(tau.size(), Vector<double>(3));
+    std::vector<Vector<double>> c(tau.size(), Vector<double>(n_symmetric_components));
     quadrature_values->get_function_values(current, c);
     for (unsigned int q = 0; q < tau.size(); ++q)
       tau[q] = stress_of(c[q], volume_fraction[q]);
+  }
+
+
+  SymmetricTensor<2, dim>
+  ElasticStress::conformation_at(const Node &node, const TrilinosWrappers::MPI::Vector &vector)
+  {
+    SymmetricTensor<2, dim> c;
+    for (unsigned int k = 0; k < n_symmetric_components; ++k)
+      {
+        const auto [i, j] = symmetric_component(k);
+        c[i][j]           = vector[node.dofs[k]];
+      }
+    return c;
+  }
+
+
+  void
+  ElasticStress::set_conformation(const Node &                   node,
+                                  const SymmetricTensor<2, dim> &c,
+                                  TrilinosWrappers::MPI::Vector &vector)
+  {
+    for (unsigned int k = 0; k < n_symmetric_components; ++k)
+      {
+        const auto [i, j]   = symmetric_component(k);
+        vector[node.dofs[k]] = c[i][j];
+      }
   }
 
 
@@ -734,10 +774,7 @@ namespace viscofilm
   {
     double smallest = std::numeric_limits<double>::max();
     for (const Node &node : nodes)
-      smallest = std::min(smallest,
-                          smallest_eigenvalue(current[node.dofs[0]],
-                                              current[node.dofs[1]],
-                                              current[node.dofs[2]]));
+      smallest = std::min(smallest, smallest_eigenvalue(conformation_at(node, current)));
     return Utilities::MPI::min(smallest, triangulation.get_communicator());
   }
 
@@ -764,14 +801,14 @@ namespace viscofilm
 
 
   void
-  ElasticStress::add_output(DataOut<2> &data_out, const VolumeFraction &volume_fraction)
+  ElasticStress::add_output(DataOut<dim> &data_out, const VolumeFraction &volume_fraction)
   {
     tau_postprocessor = std::make_unique<StressPostprocessor>(*this, volume_fraction);
     data_out.add_data_vector(dofs, current, *tau_postprocessor);
   }
 
 
-  const DoFHandler<2> &
+  const DoFHandler<dim> &
   ElasticStress::dof_handler() const
   {
     return dofs;

@@ -74,12 +74,12 @@ namespace viscofilm
                           const bool          pressure_up_to_constant) const
   {
     Assert(exact_solution, ExcInternalError());
-    FunctionParser<2> &exact = exact_solution->function();
+    FunctionParser<dim> &exact = exact_solution->function();
     exact.set_time(time);
 
-    const DoFHandler<2> &dof_handler = stokes.dof_handler();
-    const QGauss<2>      quadrature(dof_handler.get_fe().degree + 2);
-    FEValues<2>          fe_values(dof_handler.get_fe(),
+    const DoFHandler<dim> &dof_handler = stokes.dof_handler();
+    const QGauss<dim>      quadrature(dof_handler.get_fe().degree + 2);
+    FEValues<dim>          fe_values(dof_handler.get_fe(),
                           quadrature,
                           update_values | update_quadrature_points |
                             update_JxW_values);
@@ -115,16 +115,16 @@ namespace viscofilm
   {
     /// ‖u_h − (f + offset)‖_L2 over all components of a field.
     double
-    field_l2_error(const DoFHandler<2> &                dof_handler,
+    field_l2_error(const DoFHandler<dim> &                dof_handler,
                    const TrilinosWrappers::MPI::Vector &solution,
-                   FunctionParser<2> &                  exact,
+                   FunctionParser<dim> &                  exact,
                    const double                         time,
                    const std::vector<double> &          offset)
     {
       exact.set_time(time);
       const unsigned int n = offset.size();
-      const QGauss<2>    quadrature(dof_handler.get_fe().degree + 2);
-      FEValues<2>        fe_values(dof_handler.get_fe(),
+      const QGauss<dim>    quadrature(dof_handler.get_fe().degree + 2);
+      FEValues<dim>        fe_values(dof_handler.get_fe(),
                             quadrature,
                             update_values | update_quadrature_points |
                               update_JxW_values);
@@ -152,14 +152,14 @@ namespace viscofilm
                                 const VolumeFraction &volume_fraction,
                                 const double          time) const
   {
-    FunctionParser<2> &exact = exact_stress->function();
+    FunctionParser<dim> &exact = exact_stress->function();
     exact.set_time(time);
-    const DoFHandler<2> &dof_handler = stress.dof_handler();
-    const QGauss<2>      quadrature(dof_handler.get_fe().degree + 2);
-    FEValues<2>          fe_values(dof_handler.get_fe(),
+    const DoFHandler<dim> &dof_handler = stress.dof_handler();
+    const QGauss<dim>      quadrature(dof_handler.get_fe().degree + 2);
+    FEValues<dim>          fe_values(dof_handler.get_fe(),
                           quadrature,
                           update_values | update_quadrature_points | update_JxW_values);
-    FEValues<2> phi_values(volume_fraction.dof_handler().get_fe(), quadrature, update_values);
+    FEValues<dim> phi_values(volume_fraction.dof_handler().get_fe(), quadrature, update_values);
     std::vector<Vector<double>> conformation(quadrature.size(), Vector<double>(3));
     std::vector<Vector<double>> reference(quadrature.size(), Vector<double>(3));
     std::vector<double>         phi(quadrature.size());
@@ -174,7 +174,7 @@ namespace viscofilm
           exact.vector_value_list(fe_values.get_quadrature_points(), reference);
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
-              const SymmetricTensor<2, 2> tau = stress.stress_of(conformation[q], phi[q]);
+              const SymmetricTensor<2, dim> tau = stress.stress_of(conformation[q], phi[q]);
               sum += (std::pow(tau[0][0] - reference[q][0], 2) +
                       std::pow(tau[0][1] - reference[q][1], 2) +
                       std::pow(tau[1][1] - reference[q][2], 2)) *

@@ -68,7 +68,7 @@ namespace viscofilm
 
 
   VolumeFraction::VolumeFraction(
-    const parallel::distributed::Triangulation<2> &triangulation,
+    const parallel::distributed::Triangulation<dim> &triangulation,
     const Parameters &                             parameters,
     const BoundaryConditions &                     boundary_conditions)
     : parameters(parameters)
@@ -123,12 +123,12 @@ namespace viscofilm
         // Inflow where the mean u·n is below round-off relative to the
         // velocity scale: a wall with u = 0 up to round-off is none.
         const double tolerance = inflow_threshold * stokes->max_velocity();
-        const QGauss<1>     face_quadrature(3);
-        FEFaceValues<2>     stokes_face(stokes->dof_handler().get_fe(),
+        const QGauss<dim - 1> face_quadrature(3);
+        FEFaceValues<dim>     stokes_face(stokes->dof_handler().get_fe(),
                                     face_quadrature,
                                     update_values | update_normal_vectors);
         const FEValuesExtractors::Vector     velocities(0);
-        std::vector<Tensor<1, 2>>            velocity(face_quadrature.size());
+        std::vector<Tensor<1, dim>>            velocity(face_quadrature.size());
         std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face());
         // Ghost cells too, so that every rank constrains the same dofs.
         for (const auto &cell : dofs.active_cell_iterators())
@@ -283,13 +283,13 @@ namespace viscofilm
     system_matrix = 0;
     system_rhs    = 0;
 
-    const QGauss<2> quadrature(fe.degree + 1);
-    FEValues<2>     fe_values(fe,
+    const QGauss<dim> quadrature(fe.degree + 1);
+    FEValues<dim>     fe_values(fe,
                           quadrature,
                           update_values | update_gradients | update_JxW_values);
-    std::unique_ptr<FEValues<2>> stokes_values;
+    std::unique_ptr<FEValues<dim>> stokes_values;
     if (stokes != nullptr)
-      stokes_values = std::make_unique<FEValues<2>>(stokes->dof_handler().get_fe(),
+      stokes_values = std::make_unique<FEValues<dim>>(stokes->dof_handler().get_fe(),
                                                     quadrature,
                                                     update_values);
     const FEValuesExtractors::Vector velocities(0);
@@ -300,7 +300,7 @@ namespace viscofilm
     Vector<double>     cell_rhs(n_dofs);
     std::vector<types::global_dof_index> local_dofs(n_dofs);
     std::vector<double>       phi_old(n_q);
-    std::vector<Tensor<1, 2>> velocity(n_q);
+    std::vector<Tensor<1, dim>> velocity(n_q);
     std::vector<double>       streamline(n_dofs); // ψ_i/k + u·∇ψ_i
     const double              k = time_step;
 
@@ -321,7 +321,7 @@ namespace viscofilm
           cell_rhs    = 0;
           for (unsigned int q = 0; q < n_q; ++q)
             {
-              const Tensor<1, 2> u = (stokes != nullptr ? velocity[q] : Tensor<1, 2>());
+              const Tensor<1, dim> u = (stokes != nullptr ? velocity[q] : Tensor<1, dim>());
               double tau = 0;
               if (stokes != nullptr)
                 tau = parameters.standard_tau ?
@@ -338,7 +338,7 @@ namespace viscofilm
               for (unsigned int i = 0; i < n_dofs; ++i)
                 {
                   const double          psi_i      = fe_values.shape_value(i, q);
-                  const Tensor<1, 2> &grad_psi_i = fe_values.shape_grad(i, q);
+                  const Tensor<1, dim> &grad_psi_i = fe_values.shape_grad(i, q);
                   for (unsigned int j = 0; j < n_dofs; ++j)
                     cell_matrix(i, j) +=
                       (psi_i * fe_values.shape_value(j, q) +
@@ -398,10 +398,10 @@ namespace viscofilm
   {
     // The free nodes this rank owns, each with a cell around it as the hint.
     const IndexSet &                                    owned = dofs.locally_owned_dofs();
-    const std::vector<Point<2>> &                       unit_support = fe.get_unit_support_points();
+    const std::vector<Point<dim>> &                       unit_support = fe.get_unit_support_points();
     std::vector<bool>                                   seen(owned.n_elements());
-    std::vector<Point<2>>                               nodes;
-    std::vector<Triangulation<2>::active_cell_iterator> cells;
+    std::vector<Point<dim>>                               nodes;
+    std::vector<Triangulation<dim>::active_cell_iterator> cells;
     std::vector<types::global_dof_index>                node_dofs, local_dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -414,7 +414,7 @@ namespace viscofilm
               {
                 seen[owned.index_within_set(local_dofs[i])] = true;
                 nodes.push_back(
-                  StaticMappingQ1<2>::mapping.transform_unit_to_real_cell(cell, unit_support[i]));
+                  StaticMappingQ1<dim>::mapping.transform_unit_to_real_cell(cell, unit_support[i]));
                 cells.push_back(cell);
                 node_dofs.push_back(local_dofs[i]);
               }
@@ -423,8 +423,8 @@ namespace viscofilm
     feet.compute(nodes, cells, stokes_dofs, velocity, time_step);
     std::vector<double> cell_values(fe.n_dofs_per_cell());
     auto                at_feet = feet.at_feet().evaluate<3>(
-      [&](const Triangulation<2>::active_cell_iterator &cell,
-          const ArrayView<const Point<2>> &             unit_points,
+      [&](const Triangulation<dim>::active_cell_iterator &cell,
+          const ArrayView<const Point<dim>> &             unit_points,
           const ArrayView<std::array<double, 3>> &      values) {
         cell_of(dofs, cell)->get_dof_values(current_solution, cell_values.begin(), cell_values.end());
         const auto [low, high] = std::minmax_element(cell_values.begin(), cell_values.end());
@@ -464,9 +464,9 @@ namespace viscofilm
     // FE_Q_iso_Q1(2) is Q1 on the four sub-cells of the Q2 nodes, numbered
     // like FE_Q(2); its lumped mass is positive and its sub-cell stiffness
     // nearly an M-matrix (exactly on squares with constant κ).
-    const FE_Q_iso_Q1<2> sub_cells(2);
-    const QIterated<2>   quadrature(QGauss<1>(2), 2);
-    FEValues<2>          values(sub_cells,
+    const FE_Q_iso_Q1<dim> sub_cells(2);
+    const QIterated<dim>   quadrature(QGauss<1>(2), 2);
+    FEValues<dim>          values(sub_cells,
                        quadrature,
                        update_values | update_gradients | update_JxW_values);
     const unsigned int   n_dofs = fe.n_dofs_per_cell();
@@ -477,7 +477,7 @@ namespace viscofilm
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          values.reinit(static_cast<Triangulation<2>::cell_iterator>(cell));
+          values.reinit(static_cast<Triangulation<dim>::cell_iterator>(cell));
           cell->get_dof_values(current_solution, phi_old.begin(), phi_old.end());
           cell_matrix = 0;
           cell_rhs    = 0;
@@ -586,8 +586,8 @@ namespace viscofilm
     // nodes changes it by W·δ, W = w condensed onto them.
     const IndexSet &              owned = dofs.locally_owned_dofs();
     TrilinosWrappers::MPI::Vector w(owned, mpi_communicator), weights(w);
-    const QGauss<2>               quadrature(fe.degree + 1);
-    FEValues<2>    fe_values(fe, quadrature, update_values | update_JxW_values);
+    const QGauss<dim>               quadrature(fe.degree + 1);
+    FEValues<dim>    fe_values(fe, quadrature, update_values | update_JxW_values);
     Vector<double> cell_w(fe.n_dofs_per_cell());
     std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dofs.active_cell_iterators())
@@ -629,14 +629,14 @@ namespace viscofilm
   VolumeFraction::boundary_flux(const DoFHandler<dim> &                     stokes_dofs,
                                 const TrilinosWrappers::MPI::BlockVector &velocity_field) const
   {
-    const QGauss<1>                  quadrature(fe.degree + 1);
-    FEFaceValues<2>                  phi_face(fe, quadrature, update_values | update_JxW_values);
-    FEFaceValues<2>                  stokes_face(stokes_dofs.get_fe(),
+    const QGauss<dim - 1> quadrature(fe.degree + 1);
+    FEFaceValues<dim>                  phi_face(fe, quadrature, update_values | update_JxW_values);
+    FEFaceValues<dim>                  stokes_face(stokes_dofs.get_fe(),
                                 quadrature,
                                 update_values | update_normal_vectors);
     const FEValuesExtractors::Vector velocities(0);
     std::vector<double>              phi(quadrature.size());
-    std::vector<Tensor<1, 2>>        velocity(quadrature.size());
+    std::vector<Tensor<1, dim>>        velocity(quadrature.size());
     double                           flux = 0;
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned() && cell->at_boundary())
@@ -656,7 +656,7 @@ namespace viscofilm
 
 
   void
-  VolumeFraction::interpolate(const Function<2> &initial)
+  VolumeFraction::interpolate(const Function<dim> &initial)
   {
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
                                               mpi_communicator);
@@ -676,7 +676,7 @@ namespace viscofilm
 
 
   void
-  VolumeFraction::add_output(DataOut<2> &data_out) const
+  VolumeFraction::add_output(DataOut<dim> &data_out) const
   {
     data_out.add_data_vector(dofs, current_solution, "volume_fraction");
   }
@@ -735,7 +735,7 @@ namespace viscofilm
   }
 
 
-  const DoFHandler<2> &
+  const DoFHandler<dim> &
   VolumeFraction::dof_handler() const
   {
     return dofs;
@@ -752,8 +752,8 @@ namespace viscofilm
   double
   VolumeFraction::integral() const
   {
-    const QGauss<2>     quadrature(fe.degree + 1);
-    FEValues<2>         fe_values(fe, quadrature, update_values | update_JxW_values);
+    const QGauss<dim>     quadrature(fe.degree + 1);
+    FEValues<dim>         fe_values(fe, quadrature, update_values | update_JxW_values);
     std::vector<double> values(quadrature.size());
     double              sum = 0;
     for (const auto &cell : dofs.active_cell_iterators())

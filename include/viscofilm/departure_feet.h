@@ -129,9 +129,12 @@ namespace viscofilm
     std::vector<Point<dim>>                        located;
   };
 
-  /// u and ∇u (u, v, ∂u/∂x, ∂u/∂y, ∂v/∂x, ∂v/∂y) at the points of
-  /// @p points, from the velocity part of a (ghosted) Stokes solution.
-  std::vector<std::array<double, 6>>
+  /// u and ∇u at a point: u_d at [d], ∂u_d/∂x_e at [dim + dim d + e].
+  constexpr unsigned int n_velocity_values = dim + dim * dim;
+
+  /// u and ∇u (n_velocity_values) at the points of @p points, from the
+  /// velocity part of a (ghosted) Stokes solution.
+  std::vector<std::array<double, n_velocity_values>>
   evaluate_velocity(const PointEvaluator &                    points,
                     const DoFHandler<dim> &                     stokes_dofs,
                     const TrilinosWrappers::MPI::BlockVector &stokes_solution);

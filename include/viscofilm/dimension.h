@@ -1,14 +1,74 @@
-// The space dimension. The code is written for `dim`; a later step turns this
-// constant into a template parameter and instantiates 2 and 3 (issue 12).
+// The space dimension, and how a symmetric dim×dim tensor (c, τ) is stored as
+// a list of components. The code is written for `dim`, compiled once for 2
+// and once for 3 (the programs viscofilm and viscofilm-3d); a later step
+// turns this constant into a template parameter (issue 12).
 #ifndef viscofilm_dimension_h
 #define viscofilm_dimension_h
 
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <cmath>
+#include <string>
+#include <utility>
+
 namespace viscofilm
 {
-  constexpr int dim = 2;
+#ifndef VISCOFILM_DIMENSION
+#  error "compile with VISCOFILM_DIMENSION=2 or 3 (CMakeLists.txt does, once for each)"
+#endif
+  constexpr int dim = VISCOFILM_DIMENSION;
 
   /// Independent components of a symmetric dim×dim tensor (c, τ).
   constexpr unsigned int n_symmetric_components = dim * (dim + 1) / 2;
+
+  /// Row and column of the stored component @p k. The order is the upper
+  /// triangle row by row: (xx, xy, yy) in 2D, (xx, xy, xz, yy, yz, zz) in 3D
+  /// (c's FE components, the Stress expressions, the tau_* output fields).
+  inline std::pair<unsigned int, unsigned int>
+  symmetric_component(const unsigned int k)
+  {
+    unsigned int row = 0, first = 0; // first: the index of (row, row)
+    while (k >= first + dim - row)
+      first += dim - row++;
+    return {row, row + (k - first)};
+  }
+
+  /// "xx", "xy", ... of the stored component @p k.
+  inline std::string
+  symmetric_component_name(const unsigned int k)
+  {
+    const auto [i, j] = symmetric_component(k);
+    return {char('x' + i), char('x' + j)};
+  }
+
+  /// The tensor whose stored components are v[0], ..., v[n_symmetric_components − 1].
+  template <class Values>
+  dealii::SymmetricTensor<2, dim>
+  symmetric_tensor(const Values &v)
+  {
+    dealii::SymmetricTensor<2, dim> t;
+    for (unsigned int k = 0; k < n_symmetric_components; ++k)
+      {
+        const auto [i, j] = symmetric_component(k);
+        t[i][j]           = v[k];
+      }
+    return t;
+  }
+
+  /// The smallest eigenvalue of a symmetric tensor (c's positivity).
+  inline double
+  smallest_eigenvalue(const dealii::SymmetricTensor<2, dim> &t)
+  {
+    if constexpr (dim == 2)
+      {
+        // Closed form: exact to round-off where the general solver iterates.
+        const double mean = 0.5 * (t[0][0] + t[1][1]);
+        const double half = 0.5 * (t[0][0] - t[1][1]);
+        return mean - std::sqrt(half * half + t[0][1] * t[0][1]);
+      }
+    else
+      return dealii::eigenvalues(t)[dim - 1]; // in descending order
+  }
 } // namespace viscofilm
 
 #endif

@@ -8,6 +8,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
+#include <viscofilm/dimension.h>
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -35,12 +37,14 @@ namespace viscofilm
   void
   check_input(const bool condition, const std::string &message);
 
-  /// "x, y" -> Point<2>. @p parameter names the entry in error messages.
-  Point<2>
+  /// "x, y" (n = 2) or "x, y, z" (n = 3) -> Point<n>. @p parameter names the
+  /// entry in error messages.
+  template <int n = dim>
+  Point<n>
   parse_point(const std::string &text, const std::string &parameter);
 
-  /// "x1, y1; x2, y2; ..." -> points (empty text: no points).
-  std::vector<Point<2>>
+  /// "x1, y1; x2, y2; ..." (dim coordinates each) -> points (empty text: no points).
+  std::vector<Point<dim>>
   parse_point_list(const std::string &text, const std::string &parameter);
 
   /**
@@ -69,7 +73,7 @@ namespace viscofilm
           const std::string &parameter);
 
     /// The function; set_time() on it before evaluating time-dependent input.
-    FunctionParser<2> &
+    FunctionParser<dim> &
     function() const;
 
     const std::string &
@@ -78,7 +82,7 @@ namespace viscofilm
   private:
     const unsigned int                 n_components;
     std::string                        expression;
-    std::unique_ptr<FunctionParser<2>> parser;
+    std::unique_ptr<FunctionParser<dim>> parser;
   };
 
   /// Declare the "Function constants" entry shared by all expressions.

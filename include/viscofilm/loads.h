@@ -81,7 +81,7 @@ namespace viscofilm
 
     /// Fields shear_stress (σ_xy) and von_mises (σ_vm) in the snapshots.
     void
-    add_output(DataOut<2> &data_out);
+    add_output(DataOut<dim> &data_out);
 
   private:
     /// The force the fluid exerts on each force boundary (collective).
@@ -99,7 +99,7 @@ namespace viscofilm
     const VolumeFraction &volume_fraction;
     const ElasticStress & stress;
 
-    std::unique_ptr<DataPostprocessor<2>> postprocessor;
+    std::unique_ptr<DataPostprocessor<dim>> postprocessor;
   };
 } // namespace viscofilm
 

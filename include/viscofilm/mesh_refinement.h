@@ -51,7 +51,7 @@ namespace viscofilm
     /// those where all are below a quarter of it (if @p coarsen); within
     /// the level bounds. Returns whether any cell was flagged (collective).
     bool
-    flag_cells(parallel::distributed::Triangulation<2> &triangulation,
+    flag_cells(parallel::distributed::Triangulation<dim> &triangulation,
                const VolumeFraction &                   volume_fraction,
                const StokesSolver &                     stokes,
                const bool                               coarsen,
@@ -83,18 +83,18 @@ namespace viscofilm
   {
   public:
     void
-    prepare(const DoFHandler<2> &dofs, const VectorType &ghosted)
+    prepare(const DoFHandler<dim> &dofs, const VectorType &ghosted)
     {
       transfer =
-        std::make_unique<parallel::distributed::SolutionTransfer<2, VectorType>>(dofs);
+        std::make_unique<parallel::distributed::SolutionTransfer<dim, VectorType>>(dofs);
       transfer->prepare_for_coarsening_and_refinement(ghosted);
     }
 
     void
-    prepare_checkpoint(const DoFHandler<2> &dofs, const VectorType &ghosted)
+    prepare_checkpoint(const DoFHandler<dim> &dofs, const VectorType &ghosted)
     {
       transfer =
-        std::make_unique<parallel::distributed::SolutionTransfer<2, VectorType>>(dofs);
+        std::make_unique<parallel::distributed::SolutionTransfer<dim, VectorType>>(dofs);
       transfer->prepare_for_serialization(ghosted);
     }
 
@@ -106,14 +106,14 @@ namespace viscofilm
 
     /// @p distributed: a vector without ghosts laid out for the new dofs.
     void
-    finish(const DoFHandler<2> &dofs, VectorType &distributed)
+    finish(const DoFHandler<dim> &dofs, VectorType &distributed)
     {
       if (transfer)
         transfer->interpolate(distributed);
       else
         {
           transfer = std::make_unique<
-            parallel::distributed::SolutionTransfer<2, VectorType>>(dofs);
+            parallel::distributed::SolutionTransfer<dim, VectorType>>(dofs);
           transfer->deserialize(distributed);
         }
       transfer.reset();
@@ -123,7 +123,7 @@ namespace viscofilm
       hanging.distribute(distributed);
     }
 
-    std::unique_ptr<parallel::distributed::SolutionTransfer<2, VectorType>> transfer;
+    std::unique_ptr<parallel::distributed::SolutionTransfer<dim, VectorType>> transfer;
   };
 } // namespace viscofilm
 

@@ -70,11 +70,11 @@ namespace viscofilm
 
       std::string           directory = "output";
       unsigned int          interval  = 10;
-      std::vector<Point<2>> probe_points;
+      std::vector<Point<dim>> probe_points;
     };
 
     Output(const Parameters &                             parameters,
-           const parallel::distributed::Triangulation<2> &triangulation);
+           const parallel::distributed::Triangulation<dim> &triangulation);
 
     /// Create the output directory and write the parameters used into it;
     /// when resuming after @p resume_after_step, continue the run's files
@@ -103,7 +103,7 @@ namespace viscofilm
     void
     write_snapshot(const unsigned int                             step,
                    const double                                   time,
-                   const std::function<void(DataOut<2> &)> &add_fields);
+                   const std::function<void(DataOut<dim> &)> &add_fields);
 
     /// Append one row per probe point to probes.csv.
     void
@@ -118,13 +118,13 @@ namespace viscofilm
 
   private:
     const Parameters &                             parameters;
-    const parallel::distributed::Triangulation<2> &triangulation;
+    const parallel::distributed::Triangulation<dim> &triangulation;
     const MPI_Comm                                 mpi_communicator;
 
     std::vector<XDMFEntry>                  xdmf_entries;
     std::unique_ptr<CsvFile>                statistics_file;
     std::unique_ptr<CsvFile>                probes_file;
-    Utilities::MPI::RemotePointEvaluation<2> probe_cache;
+    Utilities::MPI::RemotePointEvaluation<dim> probe_cache;
     bool                                    probe_cache_is_current = false;
   };
 } // namespace viscofilm

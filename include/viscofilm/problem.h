@@ -113,7 +113,7 @@ namespace viscofilm
     // destructor warns about the exception in flight otherwise.
     std::unique_ptr<TimerOutput> computing_timer;
 
-    parallel::distributed::Triangulation<2> triangulation;
+    parallel::distributed::Triangulation<dim> triangulation;
     StokesSolver                            stokes;
     VolumeFraction                          volume_fraction;
     ElasticStress                           stress;

@@ -103,24 +103,24 @@ namespace viscofilm
     /// stress term −(s(φ) τ, ∇v) on the right-hand side. An empty hook
     /// means τ = 0.
     using ElasticStress = std::function<void(
-      const DoFHandler<2>::active_cell_iterator &cell,
+      const DoFHandler<dim>::active_cell_iterator &cell,
       const std::vector<double> &                volume_fraction,
-      std::vector<SymmetricTensor<2, 2>> &       tau)>;
+      std::vector<SymmetricTensor<2, dim>> &       tau)>;
 
     /// What the momentum equation needs besides the unknowns.
     struct Coefficients
     {
       double                          time;
       double                          time_step;
-      const DoFHandler<2> *           volume_fraction_dof_handler;
+      const DoFHandler<dim> *           volume_fraction_dof_handler;
       const TrilinosWrappers::MPI::Vector *volume_fraction;
-      Function<2> *                   body_force; // set_time() is called
+      Function<dim> *                   body_force; // set_time() is called
       ElasticStress                   elastic_stress;
     };
 
     /// @p order: Time stepping/Order (2: BDF2 for Res ∂u/∂t, and u^{n-1}
     /// is kept for it and for the extrapolated velocity of the feet).
-    StokesSolver(const parallel::distributed::Triangulation<2> &triangulation,
+    StokesSolver(const parallel::distributed::Triangulation<dim> &triangulation,
                  const Parameters &                             parameters,
                  const Model &                                  model,
                  const BoundaryConditions &                     boundary_conditions,
@@ -136,7 +136,7 @@ namespace viscofilm
     invalidate_matrix();
 
     /// The quadrature of the assembly (τ is asked for at its points).
-    Quadrature<2>
+    Quadrature<dim>
     quadrature() const;
 
     /// u^n at the departure feet of the quadrature points, for the term
@@ -181,7 +181,7 @@ namespace viscofilm
     void
     advance_time();
 
-    const DoFHandler<2> &
+    const DoFHandler<dim> &
     dof_handler() const;
 
     /// The current solution (u, v, p) with ghost values.
@@ -223,7 +223,7 @@ namespace viscofilm
     /// Add velocity, pressure and the derived divergence (∇·u), vorticity
     /// (∂v/∂x − ∂u/∂y) and inertia (|u·∇u|) to @p data_out.
     void
-    add_output(DataOut<2> &data_out) const;
+    add_output(DataOut<dim> &data_out) const;
 
     /// ‖u − u_prev‖_L2 / ‖u‖_L2 from the velocity of @p previous (ghosted)
     /// to the current one: the Picard criterion on u.
@@ -265,14 +265,14 @@ namespace viscofilm
     void
     normalize_pressure(TrilinosWrappers::MPI::BlockVector &distributed);
 
-    const parallel::distributed::Triangulation<2> &triangulation;
+    const parallel::distributed::Triangulation<dim> &triangulation;
     const Parameters &                             parameters;
     const Model &                                  model;
     const BoundaryConditions &                     boundary_conditions;
     const MPI_Comm                                 mpi_communicator;
 
-    const FESystem<2> fe;
-    DoFHandler<2>     dofs;
+    const FESystem<dim> fe;
+    DoFHandler<dim>     dofs;
 
     std::vector<IndexSet>     owned_partitioning;
     std::vector<IndexSet>     relevant_partitioning;
@@ -293,10 +293,10 @@ namespace viscofilm
     /// Model::elastic_viscosity at each owned cell's quadrature points, from
     /// the assembly that built the matrix (Implicit elastic viscosity).
     std::vector<double> elastic_viscosity_cache;
-    std::vector<Tensor<1, 2>>          old_velocity_at_feet; // per owned cell and q
+    std::vector<Tensor<1, dim>>          old_velocity_at_feet; // per owned cell and q
     std::vector<Tensor<1, dim>>        previous_velocity_at_feet; // u^{n-1}, BDF2
 
-    std::unique_ptr<DataPostprocessor<2>> flow_postprocessor;
+    std::unique_ptr<DataPostprocessor<dim>> flow_postprocessor;
     SolutionCarrier<TrilinosWrappers::MPI::BlockVector> carrier;
     SolutionCarrier<TrilinosWrappers::MPI::BlockVector> previous_carrier; // Order = 2
 

@@ -65,7 +65,7 @@ namespace viscofilm
 
     /// @p order: Time stepping/Order (1: the thesis' update, eq. 3.44; 2:
     /// the Strang-split update of update()).
-    ElasticStress(const parallel::distributed::Triangulation<2> &triangulation,
+    ElasticStress(const parallel::distributed::Triangulation<dim> &triangulation,
                   const Parameters &                             parameters,
                   const Model &                                  model,
                   const BoundaryConditions &boundary_conditions,
@@ -74,12 +74,12 @@ namespace viscofilm
     /// Distribute dofs and list the stress nodes; @p quadrature is the one
     /// the Stokes assembly asks τ at.
     void
-    setup_dofs(const Quadrature<2> &quadrature);
+    setup_dofs(const Quadrature<dim> &quadrature);
 
     /// c = Model::conformation(τ0, φ) at the nodes (τ0 = 0 in the thesis;
     /// always 0 without Model/Viscoelastic).
     void
-    set_initial_conditions(const Function<2> &    initial_stress,
+    set_initial_conditions(const Function<dim> &    initial_stress,
                            const VolumeFraction &volume_fraction);
 
     /// MODEL.md §3 step 1: the nodes' departure feet from u^n and c^n
@@ -124,9 +124,9 @@ namespace viscofilm
     /// τ at the quadrature points of @p cell (the Stokes right-hand side),
     /// given φ there; the flow sees Model::stress_coupling(φ) τ.
     void
-    stress_at_quadrature_points(const DoFHandler<2>::active_cell_iterator &cell,
+    stress_at_quadrature_points(const DoFHandler<dim>::active_cell_iterator &cell,
                                 const std::vector<double> &volume_fraction,
-                                std::vector<SymmetricTensor<2, 2>> &tau) const;
+                                std::vector<SymmetricTensor<2, dim>> &tau) const;
 
     /// τ of the conformation (c_xx, c_xy, c_yy) at a point where the volume
     /// fraction is @p volume_fraction (Model::stress).
@@ -179,9 +179,9 @@ namespace viscofilm
 
     /// Add tau_xx, tau_xy, tau_yy to @p data_out (τ needs φ with phases).
     void
-    add_output(DataOut<2> &data_out, const VolumeFraction &volume_fraction);
+    add_output(DataOut<dim> &data_out, const VolumeFraction &volume_fraction);
 
-    const DoFHandler<2> &
+    const DoFHandler<dim> &
     dof_handler() const;
 
     /// c with ghost values.
@@ -191,13 +191,24 @@ namespace viscofilm
   private:
     struct Node
     {
-      Point<2>                                position;
-      Triangulation<2>::active_cell_iterator  cell;
-      std::array<types::global_dof_index, 3>  dofs; // c_xx, c_xy, c_yy
-      SymmetricTensor<2, 2>                   foot_conformation;
+      Point<dim>                                position;
+      Triangulation<dim>::active_cell_iterator  cell;
+      // c's components in the stored order (c_xx, c_xy, c_yy in 2D)
+      std::array<types::global_dof_index, n_symmetric_components> dofs;
+      SymmetricTensor<2, dim>                   foot_conformation;
       Tensor<2, dim>                          foot_velocity_gradient; // Order = 2
       double                                  foot_volume_fraction = 0; // Order = 2
     };
+
+    /// c of @p node in @p vector.
+    static SymmetricTensor<2, dim>
+    conformation_at(const Node &node, const TrilinosWrappers::MPI::Vector &vector);
+
+    /// Write @p c as @p node's values in @p vector.
+    static void
+    set_conformation(const Node &                   node,
+                     const SymmetricTensor<2, dim> &c,
+                     TrilinosWrappers::MPI::Vector &vector);
 
     /// ‖τ − τ(@p previous)‖_L2 / ‖τ‖_L2 (Frobenius norms) for the current c.
     double
@@ -230,27 +241,27 @@ namespace viscofilm
     std::vector<double>
     nodal_volume_fraction(const VolumeFraction &volume_fraction) const;
 
-    const parallel::distributed::Triangulation<2> &triangulation;
+    const parallel::distributed::Triangulation<dim> &triangulation;
     const Parameters &                             parameters;
     const Model &                                  model;
     const BoundaryConditions &boundary_conditions;
     const unsigned int        order;
 
-    const FESystem<2>             fe;
-    DoFHandler<2>                 dofs;
+    const FESystem<dim>             fe;
+    DoFHandler<dim>                 dofs;
     IndexSet                      locally_relevant_dofs;
     AffineConstraints<double>     hanging_node_constraints; // continuous c
-    Quadrature<2>                 stokes_quadrature;
+    Quadrature<dim>                 stokes_quadrature;
     SolutionCarrier<TrilinosWrappers::MPI::Vector> carrier;
     std::vector<Node>             nodes;
     std::vector<unsigned int>     node_of_owned_dof; // component-0 dofs only
-    std::array<std::array<unsigned int, 3>, 3> lexicographic_node; // [ix][iy]
+    std::array<unsigned int, Utilities::pow(3, dim)> lexicographic_node; // [ix + 3 iy (+ 9 iz)]
 
     TrilinosWrappers::MPI::Vector current; // ghosted c^{n+1}
     TrilinosWrappers::MPI::Vector old;     // ghosted c^n
 
-    std::unique_ptr<FEValues<2>>               quadrature_values;
-    std::unique_ptr<DataPostprocessor<2>>      tau_postprocessor;
+    std::unique_ptr<FEValues<dim>>               quadrature_values;
+    std::unique_ptr<DataPostprocessor<dim>>      tau_postprocessor;
     unsigned int                               positivity_fixes = 0;
     unsigned int                               remote_feet      = 0;
     unsigned int                               transfer_repairs   = 0;

@@ -26,7 +26,7 @@ namespace viscofilm
 
   /// von Mises equivalent sqrt(3 J2) of the in-plane deviator of σ (2D).
   inline double
-  von_mises(const SymmetricTensor<2, 2> &sigma)
+  von_mises(const SymmetricTensor<2, dim> &sigma)
   {
     const double half_difference = 0.5 * (sigma[0][0] - sigma[1][1]);
     return std::sqrt(3 * (half_difference * half_difference +

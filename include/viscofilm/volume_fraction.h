@@ -53,7 +53,7 @@ namespace viscofilm
       double gls_parameter = 1.0;
     };
 
-    VolumeFraction(const parallel::distributed::Triangulation<2> &triangulation,
+    VolumeFraction(const parallel::distributed::Triangulation<dim> &triangulation,
                    const Parameters &                             parameters,
                    const BoundaryConditions &                     boundary_conditions);
 
@@ -62,7 +62,7 @@ namespace viscofilm
 
     /// φ := the interpolant of @p initial at the Q2 nodes.
     void
-    interpolate(const Function<2> &initial);
+    interpolate(const Function<dim> &initial);
 
     /// φ := @p distributed (owned values, no ghosts), with the constraints
     /// distributed (and, bounded, the hanging nodes kept in range): a change
@@ -101,12 +101,12 @@ namespace viscofilm
     void
     soften(const double diffusion, const unsigned int n_steps, const double time_step);
 
-    const DoFHandler<2> &
+    const DoFHandler<dim> &
     dof_handler() const;
 
     /// Add volume_fraction to @p data_out.
     void
-    add_output(DataOut<2> &data_out) const;
+    add_output(DataOut<dim> &data_out) const;
 
     /// φ with ghost values.
     const TrilinosWrappers::MPI::Vector &
@@ -198,8 +198,8 @@ namespace viscofilm
     const Parameters &        parameters;
     const BoundaryConditions &boundary_conditions;
     const MPI_Comm            mpi_communicator;
-    const FE_Q<2>             fe;
-    DoFHandler<2>             dofs;
+    const FE_Q<dim>             fe;
+    DoFHandler<dim>             dofs;
     AffineConstraints<double> constraints;
     IndexSet                  locally_relevant_dofs;
 
