@@ -408,16 +408,61 @@ namespace viscofilm
                                           const VolumeFraction &volume_fraction)
   {
     // ∇u^n (the deformation's rate at t_n) and φ^n at the feet (inflow feet:
-    // the boundary's volume fraction, as for c there).
-    const auto gradients =
-      evaluate_velocity(feet.at_feet(), stokes.dof_handler(), stokes.solution());
+    // the boundary's volume fraction, as for c there). ∇u^n is the field a
+    // node uses (nodal_velocity_gradient: the mean over the node's cells),
+    // interpolated in c's element: the foot's own cell's ∇u differs from it
+    // by the jump of ∇u across faces, O(1) at the biofilm's interface, and
+    // Φ̄ would then not tend to the node's Φ as k → 0 (doc/numerics.md).
+    // Entry m = dim d + e of ∇u is component m % n of vector m / n, n = c's
+    // number of components.
+    constexpr unsigned int n_entries = dim * dim;
+    constexpr unsigned int n_vectors =
+      (n_entries + n_symmetric_components - 1) / n_symmetric_components;
+    const std::vector<Tensor<2, dim>>             nodal_gradient = nodal_velocity_gradient(stokes);
+    std::array<TrilinosWrappers::MPI::Vector, n_vectors> gradient;
+    for (TrilinosWrappers::MPI::Vector &vector : gradient)
+      vector.reinit(dofs.locally_owned_dofs(), triangulation.get_communicator());
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      for (unsigned int m = 0; m < n_entries; ++m)
+        gradient[m / n_symmetric_components][nodes[i].dofs[m % n_symmetric_components]] =
+          nodal_gradient[i][m / dim][m % dim];
+    for (TrilinosWrappers::MPI::Vector &vector : gradient)
+      {
+        vector.compress(VectorOperation::insert);
+        hanging_node_constraints.distribute(vector);
+        TrilinosWrappers::MPI::Vector ghosted(dofs.locally_owned_dofs(),
+                                              locally_relevant_dofs,
+                                              triangulation.get_communicator());
+        ghosted = vector;
+        vector.swap(ghosted);
+      }
+
+    // At the feet in the layout of evaluate_velocity(): ∂u_d/∂x_e at
+    // [dim + dim d + e]; φ^n at [0].
     const FiniteElement<dim> &phi_fe = volume_fraction.dof_handler().get_fe();
     FEPointEvaluation<1, dim> phi(StaticMappingQ1<dim>::mapping, phi_fe, update_values);
-    std::vector<double>     phi_dofs(phi_fe.n_dofs_per_cell());
-    const auto              phis = feet.at_feet().evaluate<1>(
-      [&](const Triangulation<dim>::active_cell_iterator &cell,
-          const ArrayView<const Point<dim>> &             unit_points,
-          const ArrayView<std::array<double, 1>> &      values) {
+    FEPointEvaluation<n_symmetric_components, dim> gradient_values(StaticMappingQ1<dim>::mapping,
+                                                                   fe,
+                                                                   update_values);
+    std::vector<double> phi_dofs(phi_fe.n_dofs_per_cell());
+    std::vector<double> gradient_dofs(fe.n_dofs_per_cell());
+    const auto          values = feet.at_feet().evaluate<n_velocity_values>(
+      [&](const Triangulation<dim>::active_cell_iterator &            cell,
+          const ArrayView<const Point<dim>> &                         unit_points,
+          const ArrayView<std::array<double, n_velocity_values>> &    values) {
+        gradient_values.reinit(cell, unit_points);
+        for (unsigned int v = 0; v < n_vectors; ++v)
+          {
+            cell_of(dofs, cell)->get_dof_values(gradient[v],
+                                                gradient_dofs.begin(),
+                                                gradient_dofs.end());
+            gradient_values.evaluate(gradient_dofs, EvaluationFlags::values);
+            for (unsigned int q = 0; q < unit_points.size(); ++q)
+              for (unsigned int m = v * n_symmetric_components;
+                   m < std::min(n_entries, (v + 1) * n_symmetric_components);
+                   ++m)
+                values[q][dim + m] = gradient_values.get_value(q)[m % n_symmetric_components];
+          }
         cell_of(volume_fraction.dof_handler(), cell)
           ->get_dof_values(volume_fraction.solution(), phi_dofs.begin(), phi_dofs.end());
         phi.reinit(cell, unit_points);
@@ -428,13 +473,12 @@ namespace viscofilm
     const std::vector<types::boundary_id> &inflow = feet.inflow_boundaries();
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
-        for (unsigned int d = 0; d < dim; ++d)
-          for (unsigned int e = 0; e < dim; ++e)
-            nodes[i].foot_velocity_gradient[d][e] = gradients[i][dim + dim * d + e];
+        for (unsigned int m = 0; m < n_entries; ++m)
+          nodes[i].foot_velocity_gradient[m / dim][m % dim] = values[i][dim + m];
         nodes[i].foot_volume_fraction =
           inflow[i] != numbers::invalid_boundary_id ?
             boundary_conditions.boundary(inflow[i]).volume_fraction :
-            phis[i][0];
+            values[i][0];
       }
   }
 
