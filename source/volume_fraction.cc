@@ -315,7 +315,8 @@ namespace viscofilm
               (*stokes_values)[velocities].get_function_values(stokes->solution(),
                                                                velocity);
             }
-          const double h = cell->diameter() / std::sqrt(2.0);
+          // The edge of a square/cube cell.
+          const double h = cell->diameter() / std::sqrt(double(dim));
 
           cell_matrix = 0;
           cell_rhs    = 0;
