@@ -211,12 +211,20 @@ namespace viscofilm
                {BoundaryId::bottom, "Bottom"},
                {BoundaryId::top, "Top"},
                {BoundaryId::cylinder, "Cylinder"}};
-    const std::map<types::boundary_id, std::string> default_types = {
+    std::map<types::boundary_id, std::string> default_types = {
       {BoundaryId::inlet, "velocity"},
       {BoundaryId::outlet, "outflow"},
       {BoundaryId::bottom, "no slip"},
       {BoundaryId::top, "no slip"},
       {BoundaryId::cylinder, "no slip"}};
+    if (mesh == Mesh::channel && dim == 3)
+      {
+        names.erase(BoundaryId::cylinder);
+        names[BoundaryId::front]         = "Front";
+        names[BoundaryId::back]          = "Back";
+        default_types[BoundaryId::front] = "no slip";
+        default_types[BoundaryId::back]  = "no slip";
+      }
 
     named_boundaries.clear();
     std::set<std::string> used;

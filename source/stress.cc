@@ -117,14 +117,14 @@ namespace viscofilm
     prm.declare_entry("Element",
                       "continuous",
                       Patterns::Selection("continuous|discontinuous"),
-                      "continuous: FE_Q(2) for c_xx, c_xy, c_yy (the thesis; a "
+                      "continuous: FE_Q(2) for each component of c (the thesis; a "
                       "node uses the mean of ∇u over its cells). discontinuous: "
                       "FE_DGQ(2) (each node uses its own cell's ∇u).");
     prm.declare_entry("Positivity safe feet",
                       "true",
                       Patterns::Bool(),
                       "Where the Q2 interpolant of c at a departure foot is not "
-                      "positive definite, use the bilinear interpolant on the "
+                      "positive definite, use the multilinear interpolant on the "
                       "Q1 sub-cell of the Q2 nodes instead (a convex "
                       "combination of nodal values, so positive definite).");
     prm.declare_entry("Positivity floor",
@@ -243,7 +243,7 @@ namespace viscofilm
               node.position = StaticMappingQ1<dim>::mapping.transform_unit_to_real_cell(
                 cell, unit_support[k]);
               node.cell = cell;
-              for (unsigned int c = 0; c < 3; ++c)
+              for (unsigned int c = 0; c < n_symmetric_components; ++c)
                 node.dofs[c] = cell_dofs[fe.component_to_system_index(c, k)];
               nodes.push_back(node);
             }

@@ -62,7 +62,7 @@ namespace viscofilm
         }
     };
     optional_expression(exact_solution, "Exact solution", 3);
-    optional_expression(exact_stress, "Exact stress", 3);
+    optional_expression(exact_stress, "Exact stress", n_symmetric_components);
     optional_expression(exact_volume_fraction, "Exact volume fraction", 1);
     prm.leave_subsection();
   }
@@ -160,8 +160,10 @@ namespace viscofilm
                           quadrature,
                           update_values | update_quadrature_points | update_JxW_values);
     FEValues<dim> phi_values(volume_fraction.dof_handler().get_fe(), quadrature, update_values);
-    std::vector<Vector<double>> conformation(quadrature.size(), Vector<double>(3));
-    std::vector<Vector<double>> reference(quadrature.size(), Vector<double>(3));
+    std::vector<Vector<double>> conformation(quadrature.size(),
+                                             Vector<double>(n_symmetric_components));
+    std::vector<Vector<double>> reference(quadrature.size(),
+                                          Vector<double>(n_symmetric_components));
     std::vector<double>         phi(quadrature.size());
     double                      sum = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -175,10 +177,14 @@ namespace viscofilm
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
               const SymmetricTensor<2, dim> tau = stress.stress_of(conformation[q], phi[q]);
-              sum += (std::pow(tau[0][0] - reference[q][0], 2) +
-                      std::pow(tau[0][1] - reference[q][1], 2) +
-                      std::pow(tau[1][1] - reference[q][2], 2)) *
-                     fe_values.JxW(q);
+              // Σ over the stored components (xx, xy, yy in 2D).
+              double square = 0;
+              for (unsigned int k = 0; k < n_symmetric_components; ++k)
+                {
+                  const auto [i, j] = symmetric_component(k);
+                  square += std::pow(tau[i][j] - reference[q][k], 2);
+                }
+              sum += square * fe_values.JxW(q);
             }
         }
     return std::sqrt(Utilities::MPI::sum(sum, dof_handler.get_communicator()));

@@ -315,7 +315,8 @@ namespace viscofilm
               (*stokes_values)[velocities].get_function_values(stokes->solution(),
                                                                velocity);
             }
-          const double h = cell->diameter() / std::sqrt(2.0);
+          // The edge of a square/cube cell.
+          const double h = cell->diameter() / std::sqrt(double(dim));
 
           cell_matrix = 0;
           cell_rhs    = 0;
@@ -461,9 +462,9 @@ namespace viscofilm
   {
     system_matrix = 0;
     system_rhs    = 0;
-    // FE_Q_iso_Q1(2) is Q1 on the four sub-cells of the Q2 nodes, numbered
+    // FE_Q_iso_Q1(2) is Q1 on the 2^dim sub-cells of the Q2 nodes, numbered
     // like FE_Q(2); its lumped mass is positive and its sub-cell stiffness
-    // nearly an M-matrix (exactly on squares with constant κ).
+    // nearly an M-matrix (exactly on squares and cubes with constant κ).
     const FE_Q_iso_Q1<dim> sub_cells(2);
     const QIterated<dim>   quadrature(QGauss<1>(2), 2);
     FEValues<dim>          values(sub_cells,

@@ -28,6 +28,8 @@ namespace viscofilm
     constexpr types::boundary_id bottom   = 2; // y = min
     constexpr types::boundary_id top      = 3; // y = max
     constexpr types::boundary_id cylinder = 4; // channel with cylinder
+    constexpr types::boundary_id front    = 4; // z = min (3D channel)
+    constexpr types::boundary_id back     = 5; // z = max (3D channel)
   } // namespace BoundaryId
 
   class Geometry

@@ -48,8 +48,8 @@ namespace viscofilm
       void
       parse_parameters(ParameterHandler &prm);
 
-      /// FE_Q(2)^3 (the thesis; nodes use the mean ∇u of their cells) or
-      /// FE_DGQ(2)^3 (every node uses its own cell's ∇u).
+      /// FE_Q(2)^n (the thesis; nodes use the mean ∇u of their cells) or
+      /// FE_DGQ(2)^n (every node uses its own cell's ∇u), n = n_symmetric_components.
       bool discontinuous = false;
       /// Evaluate c at a foot on the Q1 sub-cells of the Q2 nodes where the
       /// Q2 interpolant is not positive definite.
@@ -128,7 +128,7 @@ namespace viscofilm
                                 const std::vector<double> &volume_fraction,
                                 std::vector<SymmetricTensor<2, dim>> &tau) const;
 
-    /// τ of the conformation (c_xx, c_xy, c_yy) at a point where the volume
+    /// τ of the conformation (its stored components, dimension.h) at a point where the volume
     /// fraction is @p volume_fraction (Model::stress).
     SymmetricTensor<2, dim>
     stress_of(const Vector<double> &conformation, const double volume_fraction) const;
@@ -172,12 +172,12 @@ namespace viscofilm
     unsigned int
     n_remote_feet() const;
 
-    /// The conformation of the elastic stress @p tau (xx, xy, yy as the
+    /// The conformation of the elastic stress @p tau (stored components as the
     /// Stress expressions give it) at volume fraction @p phi (Model).
     SymmetricTensor<2, dim>
     conformation(const Vector<double> &tau, const double phi) const;
 
-    /// Add tau_xx, tau_xy, tau_yy to @p data_out (τ needs φ with phases).
+    /// Add tau_xx, tau_xy, ... (stored order) to @p data_out (τ needs φ with phases).
     void
     add_output(DataOut<dim> &data_out, const VolumeFraction &volume_fraction);
 

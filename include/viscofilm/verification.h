@@ -28,7 +28,7 @@ namespace viscofilm
     parse_parameters(ParameterHandler &prm);
 
     /// f in the momentum equation (zero unless set).
-    ParsedExpression body_force{2};
+    ParsedExpression body_force{dim};
 
     /// L2 errors (velocity, pressure) of the Stokes solution at @p time
     /// against the exact solution; with @p pressure_up_to_constant the best
