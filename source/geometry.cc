@@ -34,6 +34,20 @@ namespace viscofilm
       return std::make_unique<CylindricalManifold<dim>>(axis, centre);
     }
 
+    /// The distance from the cylinder's axis to the nearest side of the
+    /// channel, in the plane (x, y) across the axis.
+    double
+    distance_to_nearest_side(const Point<dim> &centre,
+                             const Point<dim> &lower_left,
+                             const Point<dim> &upper_right)
+    {
+      double distance = std::numeric_limits<double>::max();
+      for (unsigned int d = 0; d < 2; ++d)
+        distance =
+          std::min({distance, centre[d] - lower_left[d], upper_right[d] - centre[d]});
+      return distance;
+    }
+
     /// What a boundary of a gmsh mesh is, and gmsh's name for its group.
     const std::string boundary_entity =
       (dim == 2 ? "boundary lines" : "boundary faces");
@@ -176,11 +190,8 @@ namespace viscofilm
       }
     else if (mesh == Mesh::channel_with_cylinder)
       {
-        double gap = std::numeric_limits<double>::max();
-        for (unsigned int d = 0; d < 2; ++d) // in the plane across the axis
-          gap = std::min({gap,
-                          cylinder_centre[d] - lower_left[d],
-                          upper_right[d] - cylinder_centre[d]});
+        const double gap =
+          distance_to_nearest_side(cylinder_centre, lower_left, upper_right);
         check_input(cylinder_radius > 0 && cylinder_radius < 0.9 * gap,
                     "Geometry/Cylinder radius = " + to_text(cylinder_radius) +
                       ": the cylinder must lie inside the channel with a margin "
@@ -315,11 +326,8 @@ namespace viscofilm
       {
         // A square of half-size h around the hole (h: the distance to the
         // nearest side), padded to the channel's sides.
-        double h = std::numeric_limits<double>::max();
-        for (unsigned int d = 0; d < 2; ++d)
-          h = std::min({h,
-                        cylinder_centre[d] - lower_left[d],
-                        upper_right[d] - cylinder_centre[d]});
+        const double h =
+          distance_to_nearest_side(cylinder_centre, lower_left, upper_right);
         // 3D: the 2D mesh extruded over the depth in layers of about h,
         // centred on the channel's middle in z.
         const double depth  = upper_right[dim - 1] - lower_left[dim - 1];
