@@ -82,21 +82,6 @@ namespace viscofilm
   } // namespace
 
 
-  BoundaryConditions::BoundaryConditions()
-  {
-    const char *names[] = {"Inlet", "Outlet", "Bottom", "Top"};
-    const Type  thesis[] = {Type::velocity, Type::outflow, Type::no_slip, Type::no_slip};
-    boundaries.resize(4);
-    for (unsigned int b = 0; b < 4; ++b)
-      {
-        boundaries[b].name        = names[b];
-        boundaries[b].id          = b;
-        boundaries[b].type        = thesis[b];
-        boundaries[b].normal_axis = b / 2;
-      }
-  }
-
-
   void
   BoundaryConditions::declare_parameters(
     ParameterHandler &                          prm,
@@ -119,18 +104,20 @@ namespace viscofilm
           "u·n = 0 and zero tangential traction (a symmetry plane). pressure: "
           "as outflow with normal traction σn·n = −Pressure. periodic: "
           "identified with Periodic partner by a translation. Built-in meshes: "
-          "the thesis' types (Cylinder: no slip); a gmsh boundary has none and "
-          "must be given one.");
+          "the thesis' types (Cylinder, and in 3D Front and Back: no slip); a "
+          "gmsh boundary has none and must be given one.");
         ParsedExpression::declare(prm,
                                   "Velocity",
-                                  "0; 0",
-                                  "Boundary velocity \"u; v\" (velocity; the "
-                                  "tangential part for outflow and pressure).");
+                                  zero_expression(dim),
+                                  "Boundary velocity \"u; v\" (3D: \"u; v; "
+                                  "w\") (velocity; the tangential part for "
+                                  "outflow and pressure).");
         ParsedExpression::declare(prm,
                                   "Pressure",
                                   "0",
                                   "P of Type = pressure: the normal traction "
-                                  "σn·n = −P, an expression of x, y, t.");
+                                  "σn·n = −P, an expression of x, y (, z), "
+                                  "t.");
         prm.declare_entry("Periodic partner",
                           "",
                           Patterns::Anything(),
@@ -144,8 +131,9 @@ namespace viscofilm
                           "enters (u·n < 0), in [0, 1]. The thesis: 0.");
         ParsedExpression::declare(prm,
                                   "Stress",
-                                  "0; 0; 0",
-                                  "Elastic stress \"τxx; τxy; τyy\" carried in "
+                                  zero_expression(n_symmetric_components),
+                                  "Elastic stress \"τxx; τxy; τyy\" (3D: "
+                                  "\"τxx; τxy; τxz; τyy; τyz; τzz\") carried in "
                                   "where the flow enters (u·n < 0). 0: the "
                                   "relaxed state.");
         prm.leave_subsection();
@@ -240,7 +228,7 @@ namespace viscofilm
           boundary.velocity.function().set_time(time);
           const StokesVelocity velocity(boundary.velocity.function());
 
-          if (type == Type::slip)
+          if (type == Type::slip && boundary.normal_axis < 0)
             VectorTools::compute_no_normal_flux_constraints(dof_handler,
                                                             0,
                                                             {boundary.id},
@@ -255,12 +243,16 @@ namespace viscofilm
             }
           else
             {
-              // Every velocity component, or the tangential ones on a
-              // boundary normal to a coordinate axis.
+              // On a boundary normal to a coordinate axis: the normal
+              // component (slip), the tangential ones (pressure); elsewhere
+              // every velocity component.
               ComponentMask mask(dim + 1, false);
               for (unsigned int d = 0; d < dim; ++d)
-                mask.set(d, type != Type::pressure || int(d) != boundary.normal_axis);
-              if (type == Type::no_slip)
+                mask.set(d,
+                         type == Type::slip     ? int(d) == boundary.normal_axis :
+                         type == Type::pressure ? int(d) != boundary.normal_axis :
+                                                  true);
+              if (type == Type::no_slip || type == Type::slip)
                 VectorTools::interpolate_boundary_values(
                   dof_handler, boundary.id, Functions::ZeroFunction<dim>(dim + 1),
                   constraints, mask);

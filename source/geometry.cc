@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <set>
 #include <sstream>
 
@@ -20,6 +21,24 @@ namespace viscofilm
     /// The cylinder's manifolds (GridGenerator::plate_with_a_hole's ids).
     constexpr types::manifold_id polar_manifold       = 0;
     constexpr types::manifold_id transfinite_manifold = 1;
+
+    /// The cylinder's surface: a circle about the centre in 2D, a cylinder
+    /// along z through it in 3D.
+    std::unique_ptr<Manifold<dim>>
+    cylinder_manifold(const Point<dim> &centre)
+    {
+      if (dim == 2)
+        return std::make_unique<PolarManifold<dim>>(centre);
+      Tensor<1, dim> axis;
+      axis[dim - 1] = 1;
+      return std::make_unique<CylindricalManifold<dim>>(axis, centre);
+    }
+
+    /// What a boundary of a gmsh mesh is, and gmsh's name for its group.
+    const std::string boundary_entity =
+      (dim == 2 ? "boundary lines" : "boundary faces");
+    const std::string physical_group =
+      (dim == 2 ? "Physical Curve" : "Physical Surface");
 
     /// Physical names of the (dim − 1)-dimensional groups in a gmsh file's
     /// $PhysicalNames section, by tag (deal.II's GridIn skips the section).
@@ -61,48 +80,60 @@ namespace viscofilm
                       "2",
                       Patterns::Integer(2, 3),
                       "Space dimension of the run: 2 or 3. Points are then "
-                      "written \"x, y\" or \"x, y, z\", and expressions use x, "
-                      "y (, z) and t.");
+                      "written \"x, y\" or \"x, y, z\", expressions use x, "
+                      "y (, z) and t, vectors have dim components and "
+                      "symmetric tensors dim(dim+1)/2 (xx; xy; yy or xx; xy; "
+                      "xz; yy; yz; zz).");
     prm.declare_entry("Mesh",
                       "channel",
                       Patterns::Selection("channel|channel with cylinder|gmsh"),
-                      "channel: the rectangle between the corners, boundaries "
-                      "Inlet (x min), Outlet (x max), Bottom (y min), Top (y "
+                      "channel: the rectangle (3D: box) between the corners, "
+                      "boundaries Inlet (x min), Outlet (x max), Bottom (y "
+                      "min), Top (y max), and in 3D Front (z min), Back (z "
                       "max). channel with cylinder: the same with a cylinder "
-                      "(boundary Cylinder) cut out. gmsh: the quadrilateral "
-                      "mesh in Mesh file; its boundaries are the physical "
-                      "groups of its boundary lines, named as in the file.");
+                      "(boundary Cylinder) cut out; in 3D its axis is along z "
+                      "and it spans the channel from Front to Back. gmsh: the "
+                      "quadrilateral (3D: hexahedral) mesh in Mesh file; its "
+                      "boundaries are the physical groups of its boundary "
+                      "lines (3D: surfaces), named as in the file.");
     prm.declare_entry("Lower left corner",
                       dim == 2 ? "0, 0" : "0, 0, 0",
                       Patterns::Anything(),
-                      "Corner (x, y) of the channel at the inlet and the bottom "
-                      "wall, in units of L0 (1 cm).");
+                      "Corner (x, y) (3D: (x, y, z)) of the channel at the "
+                      "inlet and the bottom (and front) wall, in units of L0 "
+                      "(1 cm).");
     prm.declare_entry("Upper right corner",
                       dim == 2 ? "1, 1" : "1, 1, 1",
                       Patterns::Anything(),
-                      "Corner (x, y) of the channel at the outlet and the top "
-                      "wall. Must exceed the lower left corner in x and y.");
+                      "Corner (x, y) (3D: (x, y, z)) of the channel at the "
+                      "outlet and the top (and back) wall. Must exceed the "
+                      "lower left corner in every coordinate.");
     prm.declare_entry("Initial global refinement",
                       "5",
                       Patterns::Integer(0, 12),
                       "Number of global refinements of the coarse mesh (square "
-                      "cells of edge min(width, height) for the channel). 5 "
-                      "gives the thesis' Δx = 1/32 on the unit square.");
+                      "(3D: cubic) cells of edge the channel's smallest side "
+                      "for the channel). 5 gives the thesis' Δx = 1/32 on the "
+                      "unit square.");
     prm.declare_entry("Cylinder centre",
                       dim == 2 ? "0, 0" : "0, 0, 0",
                       Patterns::Anything(),
-                      "Centre (x, y) of the cylinder (channel with cylinder).");
+                      "Centre (x, y) of the cylinder (channel with cylinder); "
+                      "in 3D a point (x, y, z) on its axis, which is parallel "
+                      "to z (its z does not matter).");
     prm.declare_entry("Cylinder radius",
                       "1",
                       Patterns::Double(0),
                       "Radius of the cylinder (channel with cylinder); the "
                       "cylinder must keep a gap of a tenth of the distance "
-                      "from its centre to the nearest channel side.");
+                      "from its centre to the nearest channel side (in x and "
+                      "y).");
     prm.declare_entry("Mesh file",
                       "",
                       Patterns::Anything(),
-                      "gmsh mesh (.msh, format 2 or 4, quadrilaterals only), "
-                      "relative to the parameter file's directory.");
+                      "gmsh mesh (.msh, format 2 or 4, quadrilaterals only; "
+                      "3D: hexahedra only), relative to the parameter file's "
+                      "directory.");
     prm.leave_subsection();
   }
 
@@ -135,7 +166,7 @@ namespace viscofilm
           ordered = ordered && upper_right[d] > lower_left[d];
         check_input(ordered,
                     "Geometry/Upper right corner must exceed Geometry/Lower "
-                    "left corner in both x and y");
+                    "left corner in every coordinate");
       }
     if (mesh == Mesh::channel)
       {
@@ -146,7 +177,7 @@ namespace viscofilm
     else if (mesh == Mesh::channel_with_cylinder)
       {
         double gap = std::numeric_limits<double>::max();
-        for (unsigned int d = 0; d < dim; ++d)
+        for (unsigned int d = 0; d < 2; ++d) // in the plane across the axis
           gap = std::min({gap,
                           cylinder_centre[d] - lower_left[d],
                           upper_right[d] - cylinder_centre[d]});
@@ -199,10 +230,10 @@ namespace viscofilm
     if (mesh == Mesh::gmsh)
       {
         check_input(axes.count(0) == 0,
-                    "Geometry/Mesh file \"" + mesh_file +
-                      "\": some boundary lines belong to no physical group; "
-                      "put every boundary line in one (gmsh: Physical Curve), "
-                      "its name is what Boundary conditions calls it");
+                    "Geometry/Mesh file \"" + mesh_file + "\": some " +
+                      boundary_entity + " belong to no physical group; put "
+                      "every one in one (gmsh: " + physical_group + "), its "
+                      "name is what Boundary conditions calls it");
         names = read_physical_names(mesh_file);
       }
     else
@@ -210,13 +241,17 @@ namespace viscofilm
                {BoundaryId::outlet, "Outlet"},
                {BoundaryId::bottom, "Bottom"},
                {BoundaryId::top, "Top"},
-               {BoundaryId::cylinder, "Cylinder"}};
+               {BoundaryId::cylinder, "Cylinder"},
+               {BoundaryId::front, "Front"},
+               {BoundaryId::back, "Back"}};
     const std::map<types::boundary_id, std::string> default_types = {
       {BoundaryId::inlet, "velocity"},
       {BoundaryId::outlet, "outflow"},
       {BoundaryId::bottom, "no slip"},
       {BoundaryId::top, "no slip"},
-      {BoundaryId::cylinder, "no slip"}};
+      {BoundaryId::cylinder, "no slip"},
+      {BoundaryId::front, "no slip"},
+      {BoundaryId::back, "no slip"}};
 
     named_boundaries.clear();
     std::set<std::string> used;
@@ -267,17 +302,32 @@ namespace viscofilm
   Geometry::make_coarse_grid(Triangulation<dim> &triangulation) const
   {
     if (mesh == Mesh::channel)
-      GridGenerator::subdivided_hyper_rectangle(
-        triangulation, coarse_repetitions(), lower_left, upper_right, /*colorize*/ true);
+      {
+        GridGenerator::subdivided_hyper_rectangle(
+          triangulation, coarse_repetitions(), lower_left, upper_right, /*colorize*/ true);
+        // colorize numbers z min and z max 4 and 5: BoundaryId's front, back.
+        for (const auto &face : triangulation.active_face_iterators())
+          if (face->at_boundary() && face->boundary_id() >= 4)
+            face->set_boundary_id(face->boundary_id() == 4 ? BoundaryId::front :
+                                                             BoundaryId::back);
+      }
     else if (mesh == Mesh::channel_with_cylinder)
       {
         // A square of half-size h around the hole (h: the distance to the
         // nearest side), padded to the channel's sides.
         double h = std::numeric_limits<double>::max();
-        for (unsigned int d = 0; d < dim; ++d)
+        for (unsigned int d = 0; d < 2; ++d)
           h = std::min({h,
                         cylinder_centre[d] - lower_left[d],
                         upper_right[d] - cylinder_centre[d]});
+        // 3D: the 2D mesh extruded over the depth in layers of about h,
+        // centred on the channel's middle in z.
+        const double depth  = upper_right[dim - 1] - lower_left[dim - 1];
+        Point<dim>   centre = cylinder_centre;
+        if (dim == 3)
+          centre[dim - 1] = 0.5 * (lower_left[dim - 1] + upper_right[dim - 1]);
+        const unsigned int layers =
+          static_cast<unsigned int>(std::max(1.0, std::round(depth / h)));
         GridGenerator::plate_with_a_hole(triangulation,
                                          cylinder_radius,
                                          h,
@@ -285,14 +335,14 @@ namespace viscofilm
                                          upper_right[1] - cylinder_centre[1] - h,
                                          cylinder_centre[0] - h - lower_left[0],
                                          upper_right[0] - cylinder_centre[0] - h,
-                                         cylinder_centre,
+                                         centre,
                                          polar_manifold,
                                          transfinite_manifold,
-                                         1.,
-                                         2,
+                                         depth,
+                                         layers + 1,
                                          /*colorize*/ true);
-        // Refined vertices on the circle, and smoothly placed around it.
-        triangulation.set_manifold(polar_manifold, PolarManifold<dim>(cylinder_centre));
+        // Refined vertices on the cylinder, and smoothly placed around it.
+        triangulation.set_manifold(polar_manifold, *cylinder_manifold(centre));
         TransfiniteInterpolationManifold<dim> transfinite;
         transfinite.initialize(triangulation);
         triangulation.set_manifold(transfinite_manifold, transfinite);
@@ -315,9 +365,13 @@ namespace viscofilm
                           error_message(e));
           }
         check_input(serial.all_reference_cells_are_hyper_cube(),
-                    "Geometry/Mesh file \"" + mesh_file +
-                      "\" contains triangles; the solver needs quadrilaterals "
-                      "(gmsh: Recombine Surface, Mesh.RecombineAll = 1)");
+                    "Geometry/Mesh file \"" + mesh_file + "\" contains " +
+                      (dim == 2 ? "triangles; the solver needs quadrilaterals "
+                                  "(gmsh: Recombine Surface, Mesh.RecombineAll = 1)" :
+                                  "tetrahedra, prisms or pyramids; the solver "
+                                  "needs hexahedra (gmsh: Recombine and "
+                                  "Mesh.Recombine3DAll = 1, or a transfinite "
+                                  "structured mesh)"));
         triangulation.copy_triangulation(serial);
       }
   }

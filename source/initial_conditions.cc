@@ -7,6 +7,7 @@ namespace viscofilm
   {
     // On the unit square, centred on x = 0.5 at the bottom wall y = 0. The
     // thesis does not give its shapes; these follow its figures 4.1 and 4.4.
+    // In 3D they do not depend on z: ridges across the channel.
     static const std::map<std::string, std::string> profiles = {
       // stalk of half-width 0.04 up to y = 0.2 under a disc of radius 0.1
       {"bulb",
@@ -39,8 +40,9 @@ namespace viscofilm
                                 "subsection Image (doc/images.md).");
     ParsedExpression::declare(prm,
                               "Stress",
-                              "0; 0; 0",
-                              "Elastic stress \"τ_xx; τ_xy; τ_yy\" at t = 0 (the "
+                              zero_expression(n_symmetric_components),
+                              "Elastic stress \"τ_xx; τ_xy; τ_yy\" (3D: \"τ_xx; "
+                              "τ_xy; τ_xz; τ_yy; τ_yz; τ_zz\") at t = 0 (the "
                               "thesis: 0).");
     declare_function_constants(prm);
     prm.declare_entry("Softening steps",

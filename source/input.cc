@@ -98,6 +98,16 @@ namespace viscofilm
   }
 
 
+  std::string
+  zero_expression(const unsigned int n_components)
+  {
+    std::string text = "0";
+    for (unsigned int c = 1; c < n_components; ++c)
+      text += "; 0";
+    return text;
+  }
+
+
   ParsedExpression::ParsedExpression(const unsigned int n_components)
     : n_components(n_components)
   {}
@@ -113,7 +123,8 @@ namespace viscofilm
                       default_expression,
                       Patterns::Anything(),
                       documentation +
-                        " A muparser expression in x, y and t (components "
+                        " A muparser expression in x, y (3D: x, y, z) and t "
+                        "(components "
                         "separated by ';'; functions such as sin, exp, abs, "
                         "if(condition, a, b) are available).");
   }
@@ -129,7 +140,9 @@ namespace viscofilm
       Utilities::split_string_list(text, ';');
     check_input(components.size() == n_components,
                 parameter + " must have " + std::to_string(n_components) +
-                  " component(s) separated by ';', got " +
+                  " component(s) separated by ';'" +
+                  (n_components > 1 ? " in " + std::to_string(dim) + "D" : "") +
+                  ", got " +
                   std::to_string(components.size()) + ": \"" + text + "\"");
 
     std::map<std::string, double> constants{{"pi", numbers::PI}};

@@ -403,7 +403,7 @@ namespace viscofilm
     , model(model)
     , boundary_conditions(boundary_conditions)
     , mpi_communicator(triangulation.get_communicator())
-    , fe(FE_Q<dim>(2), 2, *pressure_element(parameters.pressure_element), 1)
+    , fe(FE_Q<dim>(2), dim, *pressure_element(parameters.pressure_element), 1)
     , dofs(triangulation)
     , order(order)
     , flow_postprocessor(std::make_unique<FlowPostprocessor>())
@@ -414,7 +414,9 @@ namespace viscofilm
   StokesSolver::setup_dofs()
   {
     dofs.distribute_dofs(fe);
-    const std::vector<unsigned int> block_component = {0, 0, 1};
+    // Block 0: the dim velocity components; block 1: the pressure.
+    std::vector<unsigned int> block_component(dim + 1, 0);
+    block_component[dim] = 1;
     DoFRenumbering::component_wise(dofs, block_component);
     const std::vector<types::global_dof_index> dofs_per_block =
       DoFTools::count_dofs_per_fe_block(dofs, block_component);

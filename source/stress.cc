@@ -243,7 +243,7 @@ namespace viscofilm
               node.position = StaticMappingQ1<dim>::mapping.transform_unit_to_real_cell(
                 cell, unit_support[k]);
               node.cell = cell;
-              for (unsigned int c = 0; c < 3; ++c)
+              for (unsigned int c = 0; c < n_symmetric_components; ++c)
                 node.dofs[c] = cell_dofs[fe.component_to_system_index(c, k)];
               nodes.push_back(node);
             }

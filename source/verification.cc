@@ -18,25 +18,28 @@ namespace viscofilm
     prm.enter_subsection("Verification");
     ParsedExpression::declare(prm,
                               "Body force",
-                              "0; 0",
-                              "Body force \"fx; fy\" added to the momentum "
-                              "equation, e.g. for a manufactured solution.");
+                              zero_expression(dim),
+                              "Body force \"fx; fy\" (3D: \"fx; fy; fz\") "
+                              "added to the momentum equation, e.g. for a "
+                              "manufactured solution.");
     prm.declare_entry("Exact solution",
                       "",
                       Patterns::Anything(),
-                      "Empty, or the exact \"u; v; p\" as a muparser expression "
-                      "in x, y, t: its L2 errors are written to statistics.csv "
+                      "Empty, or the exact \"u; v; p\" (3D: \"u; v; w; p\") as "
+                      "a muparser expression in x, y (, z), t: its L2 errors "
+                      "are written to statistics.csv "
                       "(the pressure error modulo a constant when no boundary "
                       "is 'outflow').");
     prm.declare_entry("Exact stress",
                       "",
                       Patterns::Anything(),
-                      "Empty, or the exact \"τ_xx; τ_xy; τ_yy\" in x, y, t: "
+                      "Empty, or the exact \"τ_xx; τ_xy; τ_yy\" (3D: \"τ_xx; "
+                      "τ_xy; τ_xz; τ_yy; τ_yz; τ_zz\") in x, y (, z), t: "
                       "statistics.csv gets stress_l2_error.");
     prm.declare_entry("Exact volume fraction",
                       "",
                       Patterns::Anything(),
-                      "Empty, or the exact φ in x, y, t: statistics.csv gets "
+                      "Empty, or the exact φ in x, y (, z), t: statistics.csv gets "
                       "volume_fraction_l2_error.");
     declare_function_constants(prm);
     prm.leave_subsection();
@@ -61,8 +64,8 @@ namespace viscofilm
           target->parse(prm.get(name), constants, "Verification/" + name);
         }
     };
-    optional_expression(exact_solution, "Exact solution", 3);
-    optional_expression(exact_stress, "Exact stress", 3);
+    optional_expression(exact_solution, "Exact solution", dim + 1);
+    optional_expression(exact_stress, "Exact stress", n_symmetric_components);
     optional_expression(exact_volume_fraction, "Exact volume fraction", 1);
     prm.leave_subsection();
   }
@@ -83,8 +86,8 @@ namespace viscofilm
                           quadrature,
                           update_values | update_quadrature_points |
                             update_JxW_values);
-    std::vector<Vector<double>> numerical(quadrature.size(), Vector<double>(3));
-    std::vector<Vector<double>> reference(quadrature.size(), Vector<double>(3));
+    std::vector<Vector<double>> numerical(quadrature.size(), Vector<double>(dim + 1));
+    std::vector<Vector<double>> reference(quadrature.size(), Vector<double>(dim + 1));
 
     // sums: ∫|u − u_ex|², ∫(p − p_ex)², ∫(p − p_ex), |Ω|
     double sums[4] = {0, 0, 0, 0};
@@ -96,10 +99,11 @@ namespace viscofilm
           exact.vector_value_list(fe_values.get_quadrature_points(), reference);
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
-              const double du = numerical[q][0] - reference[q][0];
-              const double dv = numerical[q][1] - reference[q][1];
-              const double dp = numerical[q][2] - reference[q][2];
-              sums[0] += (du * du + dv * dv) * fe_values.JxW(q);
+              double velocity_squared = 0;
+              for (unsigned int d = 0; d < dim; ++d)
+                velocity_squared += std::pow(numerical[q][d] - reference[q][d], 2);
+              sums[0] += velocity_squared * fe_values.JxW(q);
+              const double dp = numerical[q][dim] - reference[q][dim];
               sums[1] += dp * dp * fe_values.JxW(q);
               sums[2] += dp * fe_values.JxW(q);
               sums[3] += fe_values.JxW(q);
@@ -160,8 +164,10 @@ namespace viscofilm
                           quadrature,
                           update_values | update_quadrature_points | update_JxW_values);
     FEValues<dim> phi_values(volume_fraction.dof_handler().get_fe(), quadrature, update_values);
-    std::vector<Vector<double>> conformation(quadrature.size(), Vector<double>(3));
-    std::vector<Vector<double>> reference(quadrature.size(), Vector<double>(3));
+    std::vector<Vector<double>> conformation(quadrature.size(),
+                                             Vector<double>(n_symmetric_components));
+    std::vector<Vector<double>> reference(quadrature.size(),
+                                          Vector<double>(n_symmetric_components));
     std::vector<double>         phi(quadrature.size());
     double                      sum = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -175,10 +181,13 @@ namespace viscofilm
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
               const SymmetricTensor<2, dim> tau = stress.stress_of(conformation[q], phi[q]);
-              sum += (std::pow(tau[0][0] - reference[q][0], 2) +
-                      std::pow(tau[0][1] - reference[q][1], 2) +
-                      std::pow(tau[1][1] - reference[q][2], 2)) *
-                     fe_values.JxW(q);
+              double squared = 0;
+              for (unsigned int k = 0; k < n_symmetric_components; ++k)
+                {
+                  const auto [i, j] = symmetric_component(k);
+                  squared += std::pow(tau[i][j] - reference[q][k], 2);
+                }
+              sum += squared * fe_values.JxW(q);
             }
         }
     return std::sqrt(Utilities::MPI::sum(sum, dof_handler.get_communicator()));

@@ -47,7 +47,8 @@ namespace viscofilm
       Type               type = Type::no_slip;
       ParsedExpression   velocity{dim};
       double             volume_fraction = 0; // φ where the flow enters
-      /// τ where the flow enters (xx; xy; yy), 0: the relaxed state.
+      /// τ where the flow enters (stored components, dimension.h), 0: the
+      /// relaxed state.
       ParsedExpression stress{n_symmetric_components};
       /// The prescribed normal traction −P n (pressure; outflow: P = 0).
       ParsedExpression pressure{1};
@@ -56,9 +57,6 @@ namespace viscofilm
       /// The coordinate axis the normal is parallel to; -1: none.
       int normal_axis = -1;
     };
-
-    /// The channel's four boundaries with the thesis' types.
-    BoundaryConditions();
 
     /// Declare Boundary conditions/<name> for each of @p boundaries.
     static void

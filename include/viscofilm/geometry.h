@@ -1,6 +1,7 @@
-// The domain and its mesh: the thesis' channel (a rectangle, MODEL.md §3), a
-// channel with a cylinder, or a quadrilateral mesh read from a gmsh file; and
-// the named boundaries of that mesh.
+// The domain and its mesh: the thesis' channel (a rectangle, MODEL.md §3; a
+// box in 3D), a channel with a cylinder (across the channel, along z, in 3D),
+// or a quadrilateral/hexahedral mesh read from a gmsh file; and the named
+// boundaries of that mesh.
 #ifndef viscofilm_geometry_h
 #define viscofilm_geometry_h
 
@@ -20,7 +21,9 @@ namespace viscofilm
 {
   using namespace dealii;
 
-  /// Boundary ids of the built-in meshes (deal.II's colorized numbering).
+  /// Boundary ids of the built-in meshes: GridGenerator::plate_with_a_hole's
+  /// colorized numbering (the channel's z sides renumbered to match). Ids are
+  /// internal; the parameter file names boundaries.
   namespace BoundaryId
   {
     constexpr types::boundary_id inlet    = 0; // x = min
@@ -28,6 +31,8 @@ namespace viscofilm
     constexpr types::boundary_id bottom   = 2; // y = min
     constexpr types::boundary_id top      = 3; // y = max
     constexpr types::boundary_id cylinder = 4; // channel with cylinder
+    constexpr types::boundary_id front    = 5; // z = min (3D)
+    constexpr types::boundary_id back     = 6; // z = max (3D)
   } // namespace BoundaryId
 
   class Geometry

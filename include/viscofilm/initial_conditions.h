@@ -50,8 +50,8 @@ namespace viscofilm
     bool         from_image = false;
     BiofilmImage image;
 
-    /// τ = (τ_xx, τ_xy, τ_yy)(x, y) at t = 0 (the thesis: 0).
-    ParsedExpression stress{3};
+    /// τ at t = 0, its stored components (dimension.h) (the thesis: 0).
+    ParsedExpression stress{n_symmetric_components};
 
     unsigned int softening_steps     = 0;
     double       softening_time_step = 0.03125;

@@ -85,6 +85,11 @@ namespace viscofilm
     std::unique_ptr<FunctionParser<dim>> parser;
   };
 
+  /// "0; 0; …": the zero expression with @p n_components components, the
+  /// default of a vector (dim) or stress (n_symmetric_components) entry.
+  std::string
+  zero_expression(const unsigned int n_components);
+
   /// Declare the "Function constants" entry shared by all expressions.
   void
   declare_function_constants(ParameterHandler &prm);

@@ -28,7 +28,7 @@ namespace viscofilm
     parse_parameters(ParameterHandler &prm);
 
     /// f in the momentum equation (zero unless set).
-    ParsedExpression body_force{2};
+    ParsedExpression body_force{dim};
 
     /// L2 errors (velocity, pressure) of the Stokes solution at @p time
     /// against the exact solution; with @p pressure_up_to_constant the best
@@ -49,11 +49,11 @@ namespace viscofilm
     volume_fraction_l2_error(const VolumeFraction &volume_fraction,
                              const double          time) const;
 
-    /// (u, v, p) when an exact solution is given: statistics.csv then gets
+    /// (u, v, p) (3D: (u, v, w, p)) when an exact solution is given: statistics.csv then gets
     /// velocity_l2_error and pressure_l2_error.
     std::optional<ParsedExpression> exact_solution;
 
-    /// (τ_xx, τ_xy, τ_yy), if given: statistics.csv gets stress_l2_error.
+    /// τ's stored components (dimension.h), if given: statistics.csv gets stress_l2_error.
     std::optional<ParsedExpression> exact_stress;
 
     /// φ, if given: statistics.csv gets volume_fraction_l2_error.
