@@ -129,13 +129,14 @@ def main():
     # [0.475, 0.495], y < 0.3, on 200 × 100 pixels of 0.005, 8-bit binary.
     png(os.path.join(directory, "filament.png"),
         draw(200, 100, 0.005, lambda x, y: 0.475 < x < 0.495 and y < 0.3, (0, 255)))
-    # A 3D stack for the unit check: a half-ball of radius 0.25 on the wall
-    # z = 0, 20 × 20 pixels of 0.05 per slice, 10 slices, in an 8-bit
-    # multi-page TIFF; slice k holds the disc of radius √(R² − z_k²).
+    # A 3D stack (tests/image/image_3d.cc, tests/output_3d/half_ball_3d.prm):
+    # a half-ball of radius 0.25 on the bottom wall y = 0, in sections parallel
+    # to it (stacked along y), 20 × 20 pixels of 0.05 per slice, 10 slices, in
+    # an 8-bit multi-page TIFF; slice k holds the disc of radius √(R² − y_k²).
     pages = []
     for k in range(10):
-        z = (k + 0.5) * 0.05
-        r2 = 0.25 ** 2 - z ** 2
+        y = (k + 0.5) * 0.05
+        r2 = 0.25 ** 2 - y ** 2
         pages.append(draw(20, 20, 0.05, lambda x, y: (x - 0.5) ** 2 + (y - 0.5) ** 2 < r2,
                           (0, 255)))
     tiff(os.path.join(directory, "half_ball_stack.tif"), pages)

@@ -108,8 +108,10 @@ def _data_path(item, directory, what):
     return os.path.join(directory, file_name), dataset
 
 
-def parse_xdmf(path):
-    """List of SnapshotInfo, one per time in the temporal collection."""
+def parse_xdmf(path, cell_type="Quadrilateral"):
+    """List of SnapshotInfo, one per time in the temporal collection, whose
+    cells must be of cell_type (a 2D run's Quadrilateral, a 3D run's
+    Hexahedron)."""
     if not os.path.isfile(path):
         raise UserError(f"{path} not found (was the run written with Output/Interval > 0?)")
     try:
@@ -125,8 +127,11 @@ def parse_xdmf(path):
         time = grid.find("Time")
         nodes = _data_path(grid.find("Geometry/DataItem"), directory, f"{what} geometry")
         cells = _data_path(grid.find("Topology/DataItem"), directory, f"{what} topology")
-        if grid.find("Topology").get("TopologyType") != "Quadrilateral":
-            raise UserError(f"{path}: {what} does not have quadrilateral cells")
+        if grid.find("Topology").get("TopologyType") != cell_type:
+            raise UserError(f"{path}: {what} does not have {cell_type.lower()} cells"
+                            + (" (a 3D run: use plot_slices.py)"
+                               if cell_type == "Quadrilateral" else
+                               " (a 2D run: use plot_run.py)"))
         attributes = {a.get("Name"): _data_path(a.find("DataItem"), directory,
                                                 f"{what} attribute {a.get('Name')}")
                       for a in grid.findall("Attribute")}

@@ -278,11 +278,19 @@ namespace viscofilm
     check_input(slices.size() >= (spacedim == 3 ? 2 : 1),
                 parameter + ": a 3D run needs at least 2 slices");
     const unsigned int width = slices[0].width, height = slices[0].height;
+    // 2D: columns along x, rows along y upwards. 3D: the slices are
+    // sections parallel to the wall (a confocal stack), stacked along y
+    // upwards from the wall; in each, columns along x and rows along z
+    // (the section seen from above, x to the right).
     TableIndices<spacedim> size;
     size[0] = width;
-    size[1] = height;
-    if constexpr (spacedim == 3)
-      size[2] = slices.size();
+    if constexpr (spacedim == 2)
+      size[1] = height;
+    else
+      {
+        size[1] = slices.size();
+        size[2] = height;
+      }
     Table<spacedim, double> phi;
     phi.reinit(size);
     for (unsigned int k = 0; k < slices.size(); ++k)
@@ -297,9 +305,13 @@ namespace viscofilm
             {
               TableIndices<spacedim> pixel;
               pixel[0] = c;
-              pixel[1] = height - 1 - r; // rows go down, y goes up
-              if constexpr (spacedim == 3)
-                pixel[2] = k;
+              if constexpr (spacedim == 2)
+                pixel[1] = height - 1 - r; // rows go down, y goes up
+              else
+                {
+                  pixel[1] = k;
+                  pixel[2] = r;
+                }
               phi(pixel) = to_phi(slices[k].intensity[std::size_t(r) * width + c]);
             }
       }
@@ -366,20 +378,21 @@ namespace viscofilm
                       "an 8- or 16-bit grayscale PNG or TIFF, relative to the "
                       "parameter file's directory. Columns go along x, rows "
                       "along y upwards (the image's top row is the highest). "
-                      "A 3D run reads a stack of slices along z, lowest "
-                      "first: the pages of a multi-page TIFF or files "
-                      "separated by ';'.");
+                      "A 3D run reads a stack of sections parallel to the "
+                      "bottom wall, stacked along y upwards (lowest first: "
+                      "the pages of a multi-page TIFF or files separated by "
+                      "';'); in each, columns go along x and rows along z.");
     prm.declare_entry("Pixel size",
                       "0.01",
                       Patterns::Anything(),
                       "Edge of a pixel in the run's length unit (Model/Units), "
                       "> 0: one number (square pixels) or one per direction "
-                      "\"dx, dy\".");
+                      "\"dx, dy\" (3D: \"dx, dy, dz\", dy the slices' spacing).");
     prm.declare_entry("Origin",
-                      "0, 0",
+                      dim == 2 ? "0, 0" : "0, 0, 0",
                       Patterns::Anything(),
                       "Where the lower-left corner of the image's lower-left "
-                      "pixel lies, \"x, y\". The image must reach down to the "
+                      "pixel lies, \"x, y\" (3D: \"x, y, z\", the corner of the first row and column of the lowest slice). The image must reach down to the "
                       "domain's lowest y (the wall the biofilm grows on).");
     prm.declare_entry("Map",
                       "threshold",
@@ -474,11 +487,13 @@ namespace viscofilm
     // and have water on its other sides wherever they lie inside the domain
     // (biofilm there would be cut off by the image's edge).
     const BoundingBox<dim> &image = phi->extent();
-    const double tolerance = 1e-10 * domain.side_length(dim - 1);
-    const double wall = domain.get_boundary_points().first[dim - 1];
-    check_input(image.get_boundary_points().first[dim - 1] <= wall + tolerance,
+    // The biofilm grows on the bottom wall, y min, in 2D and 3D.
+    constexpr unsigned int height = 1;
+    const double tolerance = 1e-10 * domain.side_length(height);
+    const double wall = domain.get_boundary_points().first[height];
+    check_input(image.get_boundary_points().first[height] <= wall + tolerance,
                 section + "Origin: the image's lower edge at y = " +
-                  to_text(origin[dim - 1]) +
+                  to_text(origin[height]) +
                   " lies above the domain's bottom wall y = " + to_text(wall) +
                   "; the image must reach down to the wall");
     const char *axes = "xyz";
@@ -499,7 +514,7 @@ namespace viscofilm
           for (const unsigned int side : {0u, 1u})
             {
               if ((side == 0 ? pixel[d] != 0 : pixel[d] != n[d] - 1) ||
-                  (side == 0 && d == dim - 1))
+                  (side == 0 && d == height))
                 continue;
               const double edge = side == 0 ? image.get_boundary_points().first[d] :
                                               image.get_boundary_points().second[d];

@@ -149,10 +149,11 @@ namespace viscofilm
                       Patterns::List(Patterns::Anything()),
                       "Boundaries (names of Boundary conditions, "
                       "comma-separated) whose force goes into statistics.csv as "
-                      "force_x_<name>, force_y_<name>: the total force "
-                      "(pressure, viscous and elastic) the fluid exerts on the "
-                      "boundary per unit depth, F = −∫ σ n ds with n the "
-                      "domain's outward normal. Empty: none.");
+                      "force_x_<name>, force_y_<name> (3D: and force_z_<name>): "
+                      "the total force (pressure, viscous and elastic) the "
+                      "fluid exerts on the boundary, F = −∫ σ n ds with n the "
+                      "domain's outward normal: per unit depth in 2D, the "
+                      "whole boundary's in 3D. Empty: none.");
     prm.declare_entry("Method",
                       "consistent",
                       Patterns::Selection("consistent|surface integral"),

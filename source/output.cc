@@ -105,8 +105,10 @@ namespace viscofilm
     prm.declare_entry("Probe points",
                       "",
                       Patterns::Anything(),
-                      "Points \"x1, y1; x2, y2; ...\" inside the channel where "
-                      "u, v, p and φ are written to probes.csv every step.");
+                      "Points \"x1, y1; x2, y2; ...\" (3D: \"x1, y1, z1; ...\") "
+                      "inside the channel where the velocity components, p, φ "
+                      "and the components of τ are written to probes.csv every "
+                      "step.");
     prm.leave_subsection();
   }
 
@@ -255,30 +257,34 @@ namespace viscofilm
                     ExcInput("Output/Probe points: a point lies outside the mesh"));
         probe_cache_is_current = true;
       }
-    const auto uvp = VectorTools::point_values<3>(probe_cache,
-                                                  stokes.dof_handler(),
-                                                  stokes.solution());
+    // Each probe's coordinates, velocity components, p, φ and the stored
+    // components of τ (2D: x, y, u, v, p, volume_fraction, tau_xx, tau_xy,
+    // tau_yy; 3D adds z, w and the xz, yz, zz components).
+    const auto up = VectorTools::point_values<dim + 1>(probe_cache,
+                                                       stokes.dof_handler(),
+                                                       stokes.solution());
     const auto phi = VectorTools::point_values<1>(probe_cache,
                                                   volume_fraction.dof_handler(),
                                                   volume_fraction.solution());
-    const auto c = VectorTools::point_values<3>(probe_cache,
-                                                stress.dof_handler(),
-                                                stress.solution());
-    for (unsigned int i = 0; i < uvp.size(); ++i)
+    const auto c = VectorTools::point_values<n_symmetric_components>(
+      probe_cache, stress.dof_handler(), stress.solution());
+    for (unsigned int i = 0; i < up.size(); ++i)
       {
         probes_file->set("step", step);
         probes_file->set("time", time);
-        probes_file->set("x", parameters.probe_points[i][0]);
-        probes_file->set("y", parameters.probe_points[i][1]);
-        probes_file->set("u", uvp[i][0]);
-        probes_file->set("v", uvp[i][1]);
-        probes_file->set("p", uvp[i][2]);
+        for (unsigned int d = 0; d < dim; ++d)
+          probes_file->set(std::string(1, "xyz"[d]), parameters.probe_points[i][d]);
+        for (unsigned int d = 0; d < dim; ++d)
+          probes_file->set(std::string(1, "uvw"[d]), up[i][d]);
+        probes_file->set("p", up[i][dim]);
         probes_file->set("volume_fraction", phi[i]);
         const SymmetricTensor<2, dim> tau =
           stress.stress_of(Vector<double>(c[i].begin_raw(), c[i].end_raw()), phi[i]);
-        probes_file->set("tau_xx", tau[0][0]);
-        probes_file->set("tau_xy", tau[0][1]);
-        probes_file->set("tau_yy", tau[1][1]);
+        for (unsigned int k = 0; k < n_symmetric_components; ++k)
+          {
+            const auto [row, column] = symmetric_component(k);
+            probes_file->set("tau_" + symmetric_component_name(k), tau[row][column]);
+          }
         probes_file->write_row();
       }
   }

@@ -144,7 +144,8 @@ namespace viscofilm
   Problem::mesh_changed()
   {
     output.mesh_changed();
-    min_cell_size = GridTools::minimal_cell_diameter(triangulation) / std::sqrt(2.0);
+    // The edge of the smallest (square or cubic) cell: its diameter / √dim.
+    min_cell_size = GridTools::minimal_cell_diameter(triangulation) / std::sqrt(double(dim));
   }
 
 

@@ -70,9 +70,22 @@ namespace viscofilm
       {
         std::vector<std::string> names = {"divergence"};
         for (unsigned int i = 0; i < n_vorticity_components; ++i)
-          names.push_back(dim == 2 ? "vorticity" : std::string("vorticity_") + char('x' + i));
+          names.push_back("vorticity");
         names.push_back("inertia");
         return names;
+      }
+
+      /// The vorticity is a vector in 3D (one dataset of three components).
+      std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      get_data_component_interpretation() const override
+      {
+        std::vector<DataComponentInterpretation::DataComponentInterpretation>
+          interpretation(2 + n_vorticity_components,
+                         DataComponentInterpretation::component_is_scalar);
+        if (dim == 3)
+          for (unsigned int i = 0; i < n_vorticity_components; ++i)
+            interpretation[1 + i] = DataComponentInterpretation::component_is_part_of_vector;
+        return interpretation;
       }
 
       UpdateFlags
@@ -1197,11 +1210,11 @@ namespace viscofilm
   void
   StokesSolver::add_output(DataOut<dim> &data_out) const
   {
-    const std::vector<std::string> names = {"velocity", "velocity", "pressure"};
-    const std::vector<DataComponentInterpretation::DataComponentInterpretation>
-      interpretation = {DataComponentInterpretation::component_is_part_of_vector,
-                        DataComponentInterpretation::component_is_part_of_vector,
-                        DataComponentInterpretation::component_is_scalar};
+    std::vector<std::string> names(dim, "velocity");
+    names.push_back("pressure");
+    std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      interpretation(dim, DataComponentInterpretation::component_is_part_of_vector);
+    interpretation.push_back(DataComponentInterpretation::component_is_scalar);
     data_out.add_data_vector(dofs, current_solution, names, interpretation);
     data_out.add_data_vector(dofs, current_solution, *flow_postprocessor);
   }

@@ -27,7 +27,7 @@ Modes
   hdf5         run FILE.prm and list the datasets of every snapshot named in
                solution.xdmf (needs h5py), numdiff the listing.
   fields       run FILE.prm and check the node values of the last snapshot
-               against --exact "dataset=expression in x, y" (dataset[i] for a
+               against --exact "dataset=expression in x, y (, z)" (dataset[i] for a
                component; a Python expression) to --tolerance: at every corner
                of every cell the value must be the limit of the expression
                from inside that cell, so a field that jumps between cells must
@@ -354,14 +354,16 @@ def mode_fields(opts, workdir):
         match = re.fullmatch(r"(\w+)(?:\[(\d)\])?", name.strip())
         values = datasets[match.group(1)].reshape(len(nodes), -1)
         values = values[:, int(match.group(2) or 0)][cells]
-        exact = np.vectorize(lambda x, y: eval(expression, dict(vars(math)), {"x": x, "y": y}),
-                             otypes=[float])(inside[..., 0], inside[..., 1])
+        exact = np.vectorize(lambda *xyz: eval(expression, dict(vars(math)),
+                                               dict(zip("xyz", xyz))),
+                             otypes=[float])(*np.moveaxis(inside, -1, 0))
         error = np.abs(values - exact)
         worst = np.unravel_index(np.argmax(error), error.shape)
+        point = lambda p: "(" + ", ".join("%g" % c for c in p) + ")"
         if error[worst] > opts.tolerance:
-            fail("%s: %s = %.10g at the corner (%g, %g) of the cell around (%g, %g), "
-                 "exact %.10g" % (last, name, values[worst], *corners[worst],
-                                  *corners[worst[0]].mean(axis=0), exact[worst]))
+            fail("%s: %s = %.10g at the corner %s of the cell around %s, "
+                 "exact %.10g" % (last, name, values[worst], point(corners[worst]),
+                                  point(corners[worst[0]].mean(axis=0)), exact[worst]))
         print("%s: %s equals %s at every cell's corners to %.1e (tolerance %g)"
               % (last, name, expression, error.max(), opts.tolerance))
 

@@ -43,9 +43,8 @@ namespace viscofilm
 
   /**
    * φ sampled from an image or a stack of slices: a pixel (voxel) grid of
-   * edge pixel_size[d] whose lower-left corner is @p origin. Image columns go
-   * along x, image rows along y upwards (the file's first row is the top
-   * one), slices along z upwards (the first slice is the lowest). φ is
+   * edge pixel_size[d] whose lower-left corner is @p origin, indexed as
+   * pixel_table() orders it. φ is
    * bilinear (trilinear) between pixel centres, constant over the outer half
    * pixels, and 0 outside the image: so its integral over the image is
    * exactly Σ φ_pixel × pixel area (volume).
@@ -74,7 +73,10 @@ namespace viscofilm
   /**
    * The slices' pixels as a table indexed [x][y] (and [z] for spacedim = 3)
    * from the lower left, each mapped by @p to_phi. In 2D @p slices must be
-   * one image; in 3D the slices, lowest first, of equal size.
+   * one image: columns along x, rows along y upwards (the file's first row
+   * is the top one). In 3D the slices, of equal size, are sections parallel
+   * to the bottom wall stacked along y upwards (the first is the lowest),
+   * each with columns along x and rows along z (first row at the lowest z).
    */
   template <int spacedim>
   Table<spacedim, double>

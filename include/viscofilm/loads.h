@@ -75,7 +75,8 @@ namespace viscofilm
 
     /// Columns wall_shear_stress_mean/max, interface_traction_mean/max,
     /// von_mises_max, detachment_area and force_x_<name>, force_y_<name>
-    /// per force boundary (collective).
+    /// (and force_z_<name> in 3D) per force boundary: per unit depth in 2D,
+    /// totals in 3D (collective).
     void
     add_statistics(CsvFile &statistics) const;
 

@@ -1,7 +1,9 @@
-// The 3D path of Initial conditions/Image at unit level (the program is 2D
-// today): the 10-page TIFF half_ball_stack.tif (geometry/make_images.py), a
-// half-ball of radius R = 0.25 centred at (0.5, 0.5, 0) on 20 × 20 × 10
-// voxels of 0.05, read as a stack and sampled by ImageVolumeFraction<3>.
+// The 3D path of Initial conditions/Image at unit level (tests/image/
+// half_ball_3d.prm runs it through viscofilm-3d): the 10-page TIFF
+// half_ball_stack.tif (geometry/make_images.py), a half-ball of radius
+// R = 0.25 on 20 × 20 pixels per page, pages 0.05 apart: sections parallel to
+// the bottom wall stacked along y, so the ball is centred at (0.5, 0, 0.5) on
+// 20 × 10 × 20 voxels of 0.05, sampled by ImageVolumeFraction<3>.
 #include <viscofilm/image.h>
 
 #include <cmath>
@@ -38,8 +40,8 @@ main(int argc, char *argv[])
     slices, [&](const double intensity) { return intensity > 0.5 ? phi_b : 0.; }, "File");
   double voxel_sum = 0;
   for (unsigned int i = 0; i < 20; ++i)
-    for (unsigned int j = 0; j < 20; ++j)
-      for (unsigned int k = 0; k < 10; ++k)
+    for (unsigned int j = 0; j < 10; ++j)
+      for (unsigned int k = 0; k < 20; ++k)
         voxel_sum += voxels(i, j, k) * std::pow(voxel, 3);
   const ImageVolumeFraction<3> phi(std::move(voxels), {{voxel, voxel, voxel}}, Point<3>());
 
@@ -49,8 +51,8 @@ main(int argc, char *argv[])
   double integral = 0;
   const double h = voxel / 2;
   for (unsigned int i = 0; i < 40; ++i)
-    for (unsigned int j = 0; j < 40; ++j)
-      for (unsigned int k = 0; k < 20; ++k)
+    for (unsigned int j = 0; j < 20; ++j)
+      for (unsigned int k = 0; k < 40; ++k)
         integral += phi.value(Point<3>((i + 0.5) * h, (j + 0.5) * h, (k + 0.5) * h)) *
                     h * h * h;
   const double ball = phi_b * 2 * M_PI * R * R * R / 3;
@@ -63,13 +65,13 @@ main(int argc, char *argv[])
   check(std::abs(voxel_sum - ball) < phi_b * 2 * M_PI * R * R * voxel / 10,
         "Σ φ_voxel × voxel volume equals the half-ball's 0.1 · 2πR³/3 to the "
         "voxels' error");
-  // The first page is the lowest slice: at z = 0.025 the ball's radius is
-  // 0.249, at z = 0.225 it is 0.109. Rows go down, y up: the stack is
-  // symmetric in y, so probe the slice's shape in x only.
-  check(phi.value(Point<3>(0.72, 0.5, 0.025)) == phi_b &&
-          phi.value(Point<3>(0.72, 0.5, 0.225)) == 0,
+  // The first page is the lowest slice: at y = 0.025 the ball's radius is
+  // 0.249, at y = 0.225 it is 0.109. The ball is symmetric in z (the rows),
+  // so probe the slice's shape in x only.
+  check(phi.value(Point<3>(0.72, 0.025, 0.5)) == phi_b &&
+          phi.value(Point<3>(0.72, 0.225, 0.5)) == 0,
         "the first page is the lowest slice");
-  check(phi.value(Point<3>(0.5, 0.5, 0.6)) == 0 && phi.value(Point<3>(1.2, 0.5, 0.1)) == 0,
+  check(phi.value(Point<3>(0.5, 0.6, 0.5)) == 0 && phi.value(Point<3>(1.2, 0.1, 0.5)) == 0,
         "φ = 0 outside the image");
   return n_failed == 0 ? 0 : 1;
 }
