@@ -281,10 +281,7 @@ namespace viscofilm
         const SymmetricTensor<2, dim> tau =
           stress.stress_of(Vector<double>(c[i].begin_raw(), c[i].end_raw()), phi[i]);
         for (unsigned int k = 0; k < n_symmetric_components; ++k)
-          {
-            const auto [row, column] = symmetric_component(k);
-            probes_file->set("tau_" + symmetric_component_name(k), tau[row][column]);
-          }
+          probes_file->set("tau_" + symmetric_component_name(k), stored_component(tau, k));
         probes_file->write_row();
       }
   }

@@ -81,10 +81,7 @@ namespace viscofilm
             const SymmetricTensor<2, dim> tau =
               stress.stress_of(inputs.solution_values[q], phi[q]);
             for (unsigned int k = 0; k < n_symmetric_components; ++k)
-              {
-                const auto [i, j] = symmetric_component(k);
-                computed[q][k]    = tau[i][j];
-              }
+              computed[q][k] = stored_component(tau, k);
           }
       }
 
@@ -750,10 +747,7 @@ namespace viscofilm
                                   TrilinosWrappers::MPI::Vector &vector)
   {
     for (unsigned int k = 0; k < n_symmetric_components; ++k)
-      {
-        const auto [i, j]   = symmetric_component(k);
-        vector[node.dofs[k]] = c[i][j];
-      }
+      vector[node.dofs[k]] = stored_component(c, k);
   }
 
 

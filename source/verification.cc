@@ -183,10 +183,7 @@ namespace viscofilm
               const SymmetricTensor<2, dim> tau = stress.stress_of(conformation[q], phi[q]);
               double squared = 0;
               for (unsigned int k = 0; k < n_symmetric_components; ++k)
-                {
-                  const auto [i, j] = symmetric_component(k);
-                  squared += std::pow(tau[i][j] - reference[q][k], 2);
-                }
+                squared += std::pow(stored_component(tau, k) - reference[q][k], 2);
               sum += squared * fe_values.JxW(q);
             }
         }

@@ -41,6 +41,14 @@ namespace viscofilm
     return {char('x' + i), char('x' + j)};
   }
 
+  /// The stored component @p k of @p t.
+  inline double
+  stored_component(const dealii::SymmetricTensor<2, dim> &t, const unsigned int k)
+  {
+    const auto [i, j] = symmetric_component(k);
+    return t[i][j];
+  }
+
   /// The tensor whose stored components are v[0], ..., v[n_symmetric_components − 1].
   template <class Values>
   dealii::SymmetricTensor<2, dim>
