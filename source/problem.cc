@@ -280,6 +280,19 @@ namespace viscofilm
   }
 
 
+  unsigned int
+  Problem::advance_volume_fraction(const double k)
+  {
+    TimerOutput::Scope t(*computing_timer, "volume fraction");
+    return volume_fraction.advance(stokes,
+                                   departure_feet,
+                                   parameters.model.diffusion,
+                                   k,
+                                   parameters.time_stepping.order,
+                                   parameters.time_stepping.controlled());
+  }
+
+
   Problem::StepReport
   Problem::do_time_step(const double time)
   {
@@ -296,10 +309,21 @@ namespace viscofilm
       stokes.trace_back(departure_feet, k);
     }
 
-    // 2. Picard loop: Stokes with the stress iterate, then the stress update.
-    // Without elastic stress one Stokes solve is the whole step.
+    // 2. Picard loop l = 1, 2, ... for the fields at t_{n+1}:
+    //    a. Stokes with η(φ^{n+1,l-1}) and s(φ^{n+1,l-1}) τ^{n+1,l-1};
+    //    b. c^{n+1,l} from ∇u^{n+1,l} (eq. 3.44 or the exponential trapezoid);
+    //    c. Order 2: φ^{n+1,l} from φ^n along (u^n + u^{n+1,l})/2, and the
+    //       matrix reassembled with η(φ^{n+1,l}). Order 1 (the thesis, MODEL.md
+    //       §3): φ after the loop with u^{n+1}, so the step's Stokes problem has
+    //       η(φ^n) and s(φ^n), an O(k) lag (doc/numerics.md, "The coupled step").
+    //    (l = 1 starts from φ^n and c^n.) Without elastic stress and with η
+    //    independent of φ one Stokes solve is the whole step.
+    const bool phi_in_loop = (parameters.time_stepping.order == 2);
+    const Model &model     = parameters.model;
+    const bool   coupled =
+      viscoelastic || (phi_in_loop && model.viscosity(0) != model.viscosity(1));
     const unsigned int max_picard =
-      viscoelastic ? parameters.time_stepping.max_picard_iterations : 1;
+      coupled ? parameters.time_stepping.max_picard_iterations : 1;
     for (unsigned int l = 1; l <= max_picard; ++l)
       {
         const TrilinosWrappers::MPI::BlockVector previous = stokes.solution();
@@ -308,16 +332,24 @@ namespace viscofilm
           (l > 1 ? "+" : "") + std::to_string(iterations);
         report.total_stokes_iterations += iterations;
         report.picard_iterations = l;
-        if (!viscoelastic)
+        if (viscoelastic)
+          {
+            TimerOutput::Scope t(*computing_timer, "stress update");
+            report.picard_stress_change = stress.update(stokes, volume_fraction, k);
+          }
+        if (phi_in_loop)
+          {
+            if (l > 1)
+              volume_fraction.restore_old(); // each iterate from φ^n
+            report.transport_iterations += advance_volume_fraction(k);
+            stokes.invalidate_matrix();
+          }
+        if (!coupled)
           break;
-        {
-          TimerOutput::Scope t(*computing_timer, "stress update");
-          report.picard_stress_change = stress.update(stokes, volume_fraction, k);
-        }
         report.picard_velocity_change = stokes.velocity_relative_change(previous);
         // The first iterate is compared with u^n: iterate at least twice so
-        // that the updated stress has acted on the flow once. Both u and τ
-        // must have settled, each relative to its own size.
+        // that the updated stress (and φ) has acted on the flow once. Both u
+        // and τ must have settled, each relative to its own size.
         const double tolerance = parameters.time_stepping.picard_tolerance;
         if (l > 1 && report.picard_velocity_change < tolerance &&
             report.picard_stress_change < tolerance)
@@ -329,17 +361,9 @@ namespace viscofilm
                "tolerance in "
             << report.picard_iterations << " iterations at t = " << time << std::endl;
 
-    // 3. φ^{n+1} with u^{n+1}; the viscosity changes with it.
-    {
-      TimerOutput::Scope t(*computing_timer, "volume fraction");
-      report.transport_iterations =
-        volume_fraction.advance(stokes,
-                                departure_feet,
-                                parameters.model.diffusion,
-                                k,
-                                parameters.time_stepping.order,
-                                parameters.time_stepping.controlled());
-    }
+    // 3. Order 1: φ^{n+1} with u^{n+1}. The viscosity changes with φ.
+    if (!phi_in_loop)
+      report.transport_iterations = advance_volume_fraction(k);
     stokes.invalidate_matrix();
     return report;
   }

@@ -8,7 +8,11 @@ Modes
                --vary are zipped; each halves the error scale, e.g. the mesh
                size or the time step); tabulate the errors in the last row of
                statistics.csv and the observed rates, check the rates against
-               --min-rates, and numdiff the table.
+               --min-rates, and numdiff the table. A --min-rates name
+               "file.csv:col1+col2" is those columns in the rows of the
+               run's last step (every probe). --differences: no closed
+               form; the error of run i is the largest difference between
+               runs i and i+1 (Richardson: its rate is the scheme's order).
   error        run FILE.prm (or the --args command line), expect a non-zero
                exit status, the message in --reference on stderr, and no
                output directory.
@@ -182,6 +186,22 @@ def mode_run(opts, workdir):
     compare(opts, extract_columns(directory, opts.compare), workdir)
 
 
+def observed_values(directory, name):
+    """What a --min-rates name observes in one run's output, a list.
+    "file.csv:col1+col2": those columns in every row of the last step;
+    "column@value": |column − value| in statistics.csv's last row (the
+    error against a published value); "column": that column there."""
+    if ":" in name:
+        filename, columns = name.split(":")
+        rows = read_csv(os.path.join(directory, filename))
+        last_step = max(int(row["step"]) for row in rows)
+        return [float(row[c]) for row in rows if int(row["step"]) == last_step
+                for c in columns.split("+")]
+    column, _, reference = name.partition("@")
+    value = float(read_csv(os.path.join(directory, "statistics.csv"))[-1][column])
+    return [abs(value - float(reference)) if reference else value]
+
+
 def mode_convergence(opts, workdir):
     with open(opts.prm) as f:
         template = f.read()
@@ -204,15 +224,18 @@ def mode_convergence(opts, workdir):
         if result.returncode != 0:
             fail("viscofilm exited with %d for %s:\n%s"
                  % (result.returncode, ", ".join(level), result.stderr))
-        check_bounds(opts, output_directory(workdir, prm))
-        last = read_csv(os.path.join(output_directory(workdir, prm),
-                                     "statistics.csv"))[-1]
+        directory = output_directory(workdir, prm)
+        check_bounds(opts, directory)
         for name in errors:
-            # "column@value": the error of the column against a published
-            # value, |column − value|; otherwise the column is an error.
-            column, _, reference = name.partition("@")
-            value = float(last[column])
-            errors[name].append(abs(value - float(reference)) if reference else value)
+            errors[name].append(observed_values(directory, name))
+    for name, values in errors.items():
+        if opts.differences:
+            errors[name] = [max(abs(a - b) for a, b in zip(values[i], values[i + 1]))
+                            for i in range(len(values) - 1)]
+        else:
+            errors[name] = [value[0] for value in values]
+    if opts.differences:
+        levels = levels[:-1]  # a difference belongs to the coarser run of its pair
 
     lines = [varied[0][0].replace(" ", "_") + "," +
              ",".join("%s,rate" % n for n in errors)]
@@ -386,6 +409,7 @@ def main():
     parser.add_argument("--vary", action="append", default=[])
     parser.add_argument("--bound", action="append", default=[])
     parser.add_argument("--min-rates", default="")
+    parser.add_argument("--differences", action="store_true")
     parser.add_argument("--timeout", type=float, default=600)
     parser.add_argument("--stop-after", default="4")
     parser.add_argument("--interrupt-commit", action="store_true")

@@ -91,9 +91,13 @@ namespace viscofilm
     StepReport
     take_step(const double time);
     /// One step t_n -> t_{n+1} = @p time of length time_step: feet, Picard
-    /// loop, transport.
+    /// loop, transport (Order 1: after the loop; Order 2: inside it).
     StepReport
     do_time_step(const double time);
+    /// φ^{n+1} from φ^n with the current Stokes solution (VolumeFraction::
+    /// advance); returns the linear solver's iterations.
+    unsigned int
+    advance_volume_fraction(const double k);
     unsigned int
     solve_stokes(const double time);
     void
