@@ -310,12 +310,14 @@ namespace viscofilm
     }
 
     // 2. Picard loop l = 1, 2, ... for the fields at t_{n+1}:
-    //    a. Stokes with η(φ^{n+1,l-1}) and s(φ^{n+1,l-1}) τ^{n+1,l-1};
-    //    b. c^{n+1,l} from ∇u^{n+1,l} (eq. 3.44 or the exponential trapezoid);
-    //    c. Order 2: φ^{n+1,l} from φ^n along (u^n + u^{n+1,l})/2, and the
-    //       matrix reassembled with η(φ^{n+1,l}). Order 1 (the thesis, MODEL.md
-    //       §3): φ after the loop with u^{n+1}, so the step's Stokes problem has
-    //       η(φ^n) and s(φ^n), an O(k) lag (doc/numerics.md, "The coupled step").
+    //    a. Stokes (eq. 3.40) with η(φ^{n+1,l-1}) and s(φ^{n+1,l-1}) τ^{n+1,l-1};
+    //    b. c^{n+1,l} from ∇u^{n+1,l} (eq. 3.39-3.44, or the exponential
+    //       trapezoid);
+    //    c. Order 2: φ^{n+1,l} (eq. 3.45) from φ^n along (u^n + u^{n+1,l})/2,
+    //       and the matrix reassembled with η(φ^{n+1,l}). Order 1 (the thesis,
+    //       MODEL.md §3): φ after the loop with u^{n+1}, so the step's Stokes
+    //       problem has η(φ^n) and s(φ^n), an O(k) lag (doc/numerics.md, "The
+    //       coupled step at Order 2").
     //    (l = 1 starts from φ^n and c^n.) Without elastic stress and with η
     //    independent of φ one Stokes solve is the whole step.
     const bool phi_in_loop = (parameters.time_stepping.order == 2);
