@@ -57,13 +57,6 @@ PUBLISHED = {0.0: 132.36, 0.1: 130.36, 0.2: 126.62, 0.3: 123.19, 0.4: 120.59,
 FORCE_ENTRY = ("Forces", "Boundaries")
 FORCE_COLUMN = "force_x_cylinder"  # matched case-insensitively
 ETA_P = 0.41
-# From this mesh level on the Picard loop with τ on the right-hand side only
-# stops contracting at Wi = 0.5 (the stretched wake is resolved; level 3,
-# k = 0.04: changes growing tenfold per 0.12 time units from t = 1.3), and the
-# viscoelastic cases add the implicit elastic viscosity (doc/verification.md).
-# Coarser levels converge without it in fewer iterations (level 2: 10-13
-# against 14-20); the converged answer is the same.
-IMPLICIT_FROM_LEVEL = 3
 POLL_SECONDS = 2.0
 
 
@@ -94,11 +87,6 @@ end
   end
 end
 """ % (wi, wi)
-        if level >= IMPLICIT_FROM_LEVEL:
-            model += """subsection Stokes solver
-  set Implicit elastic viscosity = true
-end
-"""
         constants = "Wi=%r, etap=%r" % (wi, ETA_P)
     return """include %s
 subsection Geometry
