@@ -14,6 +14,7 @@
 #include <viscofilm/stress.h>
 #include <viscofilm/volume_fraction.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -136,6 +137,18 @@ namespace viscofilm
                       "conformation_repairs). The update itself never goes below "
                       "k/(Wi + k) times ηp/(a Wi). >= 0 (0: only negative "
                       "eigenvalues are raised, to 0).");
+    prm.declare_entry("Wall velocity gradient",
+                      "mean of cells",
+                      Patterns::Selection("mean of cells|no-slip shear"),
+                      "The velocity gradient with which a node on a no-slip "
+                      "wall updates c. mean of cells: the mean of ∇u over the "
+                      "node's cells, as everywhere else (the thesis). no-slip "
+                      "shear: its wall shear part (I − n⊗n)(∇u n)⊗n, the form "
+                      "the exact ∇u has where u = 0 on the wall. The fluid on "
+                      "the wall never leaves its node, so the discrete "
+                      "divergence in the mean (n·∂u/∂n ≠ 0) acts on it as an "
+                      "extension rate for ever and, past 1/(2λ), makes c grow "
+                      "without bound (doc/numerics.md).");
     prm.declare_entry("Deformation gradient",
                       "implicit Euler",
                       Patterns::Selection("implicit Euler|Cayley"),
@@ -157,6 +170,7 @@ namespace viscofilm
     positivity_safe_feet = prm.get_bool("Positivity safe feet");
     cayley               = (prm.get("Deformation gradient") == "Cayley");
     positivity_floor     = prm.get_double("Positivity floor");
+    wall_shear           = (prm.get("Wall velocity gradient") == "no-slip shear");
     prm.leave_subsection();
   }
 
@@ -247,6 +261,45 @@ namespace viscofilm
         }
 
     quadrature_values = std::make_unique<FEValues<dim>>(fe, quadrature, update_values);
+    if (parameters.wall_shear)
+      find_wall_normals();
+  }
+
+
+  void
+  ElasticStress::find_wall_normals()
+  {
+    // The outward normal of face f (normal to the unit axis f/2) at a
+    // point: ±(row f/2 of the inverse Jacobian), normalised.
+    const Quadrature<dim> at_nodes(fe.base_element(0).get_unit_support_points());
+    FEValues<dim>         geometry(fe, at_nodes, update_inverse_jacobians);
+    const auto no_slip = [this](const auto &face) {
+      return face->at_boundary() && boundary_conditions.boundary(face->boundary_id()).type ==
+                                      BoundaryConditions::Type::no_slip;
+    };
+    for_each_node_on_cells([&](const DoFHandler<dim>::active_cell_iterator &cell,
+                               const Quadrature<dim> &,
+                               const std::vector<unsigned int> &node_of_support) {
+      const auto faces = cell->face_iterators();
+      if (std::none_of(faces.begin(), faces.end(), no_slip))
+        return;
+      geometry.reinit(cell);
+      for (const unsigned int f : cell->face_indices())
+        if (no_slip(cell->face(f)))
+          for (unsigned int k = 0; k < at_nodes.size(); ++k)
+            if (node_of_support[k] != numbers::invalid_unsigned_int &&
+                at_nodes.point(k)[f / 2] == f % 2)
+              {
+                Tensor<1, dim> normal;
+                for (unsigned int d = 0; d < dim; ++d)
+                  normal[d] = geometry.inverse_jacobian(k)[f / 2][d];
+                nodes[node_of_support[k]].wall_normal +=
+                  (f % 2 ? 1.0 : -1.0) * normal / normal.norm();
+              }
+    });
+    for (Node &node : nodes)
+      if (node.wall_normal.norm() > 0)
+        node.wall_normal /= node.wall_normal.norm();
   }
 
 
@@ -527,8 +580,17 @@ namespace viscofilm
             ++n_cells[node_of_support[k]];
           }
     });
+    const Tensor<2, dim> identity = unit_symmetric_tensor<dim>();
     for (unsigned int i = 0; i < nodes.size(); ++i)
-      velocity_gradient[i] /= n_cells[i];
+      {
+        velocity_gradient[i] /= n_cells[i];
+        const Tensor<1, dim> &n = nodes[i].wall_normal;
+        if (n.norm() > 0)
+          // u = 0 on the wall: ∂u/∂t = 0 and n·∂u/∂n = ∇·u = 0, so ∇u =
+          // (I − n⊗n)(∇u n)⊗n, a pure shear.
+          velocity_gradient[i] =
+            outer_product((identity - outer_product(n, n)) * (velocity_gradient[i] * n), n);
+      }
     return velocity_gradient;
   }
 

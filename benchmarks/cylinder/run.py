@@ -5,7 +5,7 @@ against the published values, on three meshes.
 
 Usage:  benchmarks/cylinder/run.py [--levels 2,3,4] [--wi 0,0.1,...,0.7]
             [--time-step K0] [--np N] [--work DIR] [--tolerance T]
-            [--doc] [--quick]
+            [--doc] [--quick] [--table-only]
 
 Runs prm/cylinder.prm once per mesh level (Geometry/Initial global
 refinement) and Weissenberg number, each on N MPI ranks (default 2), and
@@ -25,7 +25,10 @@ writes doc/figures/cylinder_drag.png (K(Wi)) and the table as markdown to
 benchmarks/cylinder/results.md (pasted into doc/verification.md).
 --work keeps the runs in DIR (default benchmarks/cylinder/runs) and reuses
 every finished run whose case.prm is unchanged. --quick: the coarsest level,
-Wi = 0 and 0.1 only (checks the set-up in a few minutes).
+Wi = 0 and 0.1 only (checks the set-up in a few minutes). --table-only runs
+nothing: the table (and with --doc the figure) of the finished runs, "–"
+where a case has not run or did not finish (a long study can be run level by
+level, Wi by Wi, and tabulated at the end).
 """
 
 import argparse
@@ -197,12 +200,16 @@ def table(levels, wis, results):
               + " | published K | error of the finest | order p | extrapolated K |")
     lines = [header, "|" + "---|" * (len(levels) + 5)]
     for wi in wis:
-        values = [results[(level, wi)]["K"] for level in levels]
-        cells = ["%.3f%s" % (v, "" if results[(level, wi)]["steady"] else " (unsteady)")
-                 for v, level in zip(values, levels)]
+        runs = [results.get((level, wi)) for level in levels]
+        cells = ["–" if run is None else
+                 "%.3f%s" % (run["K"], "" if run["steady"] else " (unsteady)") for run in runs]
+        finished = [run["K"] for run in runs if run is not None]
         published = PUBLISHED.get(wi)
-        error = "%+.2f %%" % (100 * (values[-1] - published) / published) if published else "–"
-        p, extrapolated = order_and_extrapolation(values)
+        error = ("%+.2f %%" % (100 * (finished[-1] - published) / published)
+                 if published and finished else "–")
+        # the order needs three consecutive meshes
+        p, extrapolated = (order_and_extrapolation(finished) if None not in runs[-3:]
+                           else (None, None))
         lines.append("| %g | %s | %s | %s | %s | %s |" % (
             wi, " | ".join(cells), published or "–", error,
             "%.2f" % p if p is not None else "–",
@@ -219,7 +226,8 @@ def plot(levels, wis, results, path):
     ax.plot([w for w, _ in published], [k for _, k in published], "ks--", mfc="none",
             label="Alves et al. 2001, Hulsen et al. 2005")
     for level in levels:
-        ax.plot(wis, [results[(level, wi)]["K"] for wi in wis], "o-",
+        done = [wi for wi in wis if results.get((level, wi)) is not None]
+        ax.plot(done, [results[(level, wi)]["K"] for wi in done], "o-",
                 label="viscofilm, refinement %d" % level)
     ax.set(xlabel="Wi = λU/R", ylabel="K = F_x / (μU)",
            title="Confined cylinder, Oldroyd-B, β = 0.59, R/H = 0.5")
@@ -243,6 +251,8 @@ def main():
     parser.add_argument("--doc", action="store_true",
                         help="write doc/figures/cylinder_drag.png and results.md")
     parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--table-only", action="store_true",
+                        help="run nothing; tabulate the finished runs")
     arguments = parser.parse_args()
     levels = sorted(int(level) for level in arguments.levels.split(","))
     wis = sorted(float(wi) for wi in arguments.wi.split(","))
@@ -253,6 +263,14 @@ def main():
 
     cases = [(level, wi) for level in levels for wi in wis]
     results, walls = {}, {}
+    if arguments.table_only:
+        cases = []
+        for level in levels:
+            for wi in wis:
+                directory = os.path.join(arguments.work, "level%d-Wi%g" % (level, wi))
+                result_file = os.path.join(directory, "result.json")
+                if os.path.exists(result_file):
+                    results[(level, wi)] = json.load(open(result_file))
     start = time.time()
     for number, (level, wi) in enumerate(cases):
         k = arguments.time_step / 2 ** (level - levels[0])

@@ -58,6 +58,9 @@ namespace viscofilm
       /// (I − kΦ/2)^{-1}(I + kΦ/2): second order, and exactly orthogonal in a
       /// rotation, so a co-rotating stress keeps its size.
       bool cayley = false;
+      /// Nodes on a no-slip wall use the wall shear part of their ∇u
+      /// (Wall velocity gradient = no-slip shear).
+      bool wall_shear = false;
       /// Smallest eigenvalue of c, relative to ηp/(a Wi), that a node keeps
       /// after Q2 interpolation at hanging nodes and onto refined cells.
       double positivity_floor = 1e-6;
@@ -198,6 +201,9 @@ namespace viscofilm
       SymmetricTensor<2, dim>                   foot_conformation;
       Tensor<2, dim>                          foot_velocity_gradient; // Order = 2
       double                                  foot_volume_fraction = 0; // Order = 2
+      // On a no-slip wall (Wall velocity gradient = no-slip shear): the
+      // unit normal, the mean of its wall faces'; else 0.
+      Tensor<1, dim>                          wall_normal;
     };
 
     /// c of @p node in @p vector.
@@ -236,6 +242,10 @@ namespace viscofilm
     /// ∇u at every node, averaged over the node's cells.
     std::vector<Tensor<2, dim>>
     nodal_velocity_gradient(const StokesSolver &stokes) const;
+
+    /// Node::wall_normal of every node (after the nodes are set up).
+    void
+    find_wall_normals();
 
     /// φ at every node.
     std::vector<double>
