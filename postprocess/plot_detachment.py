@@ -75,7 +75,7 @@ def main():
                edgecolors="k", label="a release cutting a piece off the wall", **colours)
     fig.colorbar(scatter, ax=ax, shrink=0.7, label=f"centroid y [{length}]")
     ax.set(xlabel=f"t ({time_unit})", ylabel="detached [%]", title="detached biofilm")
-    ax.legend(fontsize=8, loc="center right")
+    ax.legend(fontsize=8, loc="center left")
     fig.tight_layout()
     out = options.out or os.path.join(vio.output_directory(run.path("figures")),
                                       "detachment.png")
