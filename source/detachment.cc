@@ -230,7 +230,8 @@ namespace viscofilm
       }
 
     // φ's loss (what set() left of the release: hanging nodes follow their
-    // masters) goes into φ_d.
+    // masters) goes into φ_d, node by node: φ_d's DoFHandler has φ's mesh and
+    // element, so deal.II numbers its dofs as φ's.
     before -= after;
     TrilinosWrappers::MPI::Vector gained(owned, comm);
     gained = detached.solution();
