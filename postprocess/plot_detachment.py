@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """Detachment of a run with Detachment/Release = true (doc/detachment.md) on
-one page: φ at the first, a middle and the last snapshot with the initial
-outline dashed, and the detached fraction of ∫φ(0) against time with the
-height of each release's centroid.
+one page: φ + φ_d at the first snapshot, the first after the largest release
+and the last, with the initial outline dashed, the attached φ's outline black
+and the detached fraction φ_d's red, and the detached mass against time: released, still in the
+flow and carried out through the outlet, with each release coloured by its
+centroid's height (squares: releases by connectivity).
 
     /usr/bin/python3 postprocess/plot_detachment.py output-detachment [--out FILE]
 """
@@ -28,33 +30,52 @@ def main():
         raise vio.UserError(f"{options.run_dir} was run without Detachment/Release = true")
     length, time_unit = run.units()
     snapshots = run.snapshots
-    chosen = [snapshots[0], snapshots[len(snapshots) // 2], snapshots[-1]]
+    released = stats["detached_mass"] > 0
+    largest = stats["time"][np.argmax(stats["detached_mass"])]
+    after = next((info for info in snapshots if info.time >= largest), snapshots[-1])
+    chosen = [snapshots[0], after, snapshots[-1]]
     first = run.load(chosen[0])
 
     top = np.nanmax(first.fields["volume_fraction"])
     fig, axes = plt.subplots(2, 2, figsize=(11, 7.5))
     for ax, info in zip(axes.flat[:3], chosen):
         snap = run.load(info)
-        mesh = ax.tripcolor(snap.triangulation, np.nan_to_num(snap.fields["volume_fraction"]),
-                            shading="gouraud", cmap="viridis", vmin=0, vmax=top)
+        # All the biofilm, attached or carried: φ + φ_d.
+        total = np.nan_to_num(snap.fields["volume_fraction"]) + np.nan_to_num(
+            snap.fields.get("phi_detached", 0))
+        mesh = ax.tripcolor(snap.triangulation, total, shading="gouraud", cmap="viridis",
+                            vmin=0, vmax=top)
         draw_outline(ax, first.triangulation, first.fields["volume_fraction"], colors="w",
                      linewidths=0.8, linestyles="dashed")
         draw_outline(ax, snap.triangulation, snap.fields["volume_fraction"], linewidths=1.2)
+        draw_outline(ax, snap.triangulation, snap.fields.get("phi_detached"), colors="r",
+                     linewidths=1.2)
         ax.set(aspect="equal", ylim=(0, 0.5), xlabel=f"x [{length}]", ylabel=f"y [{length}]",
-               title=f"φ at t = {snap.time:.3g} ({time_unit}); dashed: t = 0")
+               title=f"φ + φ_d at t = {snap.time:.3g} ({time_unit})")
         fig.colorbar(mesh, ax=ax, shrink=0.7)
 
     ax = axes.flat[3]
-    fraction = 100 * stats["detached_mass_total"] / stats["volume_fraction_integral"][0]
-    ax.plot(stats["time"], fraction, "k-", label="detached (% of ∫φ(0))")
-    released = stats["detached_mass"] > 0
-    scatter = ax.scatter(stats["time"][released], fraction[released],
-                         c=stats["detached_centroid_y"][released], cmap="plasma", s=18,
-                         label="a release, coloured by its centroid's y")
+    scale = 100 / stats["volume_fraction_integral"][0]
+    fraction = scale * stats["detached_mass_total"]
+    ax.plot(stats["time"], fraction, "k-", label="released (% of ∫φ(0))")
+    if "detached_mass_in_flow" in stats:
+        ax.plot(stats["time"], scale * stats["detached_mass_in_flow"], "r--",
+                label="in the flow (∫φ_d)")
+        ax.plot(stats["time"], scale * stats["detached_mass_outflow"], "b-.",
+                label="carried out through the outlet")
+    by_connectivity = released & (stats.get("detached_by_connectivity",
+                                            np.zeros_like(fraction)) > 0)
+    by_strength = released & ~by_connectivity
+    colours = dict(cmap="plasma", vmin=0, vmax=max(stats["detached_centroid_y"].max(), 1e-12))
+    scatter = ax.scatter(stats["time"][by_strength], fraction[by_strength],
+                         c=stats["detached_centroid_y"][by_strength], s=18,
+                         label="a release, coloured by its centroid's y", **colours)
+    ax.scatter(stats["time"][by_connectivity], fraction[by_connectivity],
+               c=stats["detached_centroid_y"][by_connectivity], s=40, marker="s",
+               edgecolors="k", label="a release cutting a piece off the wall", **colours)
     fig.colorbar(scatter, ax=ax, shrink=0.7, label=f"centroid y [{length}]")
-    ax.set(xlabel=f"t ({time_unit})", ylabel="detached [%]",
-           title="detached biofilm (taken away by the flow)")
-    ax.legend(fontsize=8, loc="lower right")
+    ax.set(xlabel=f"t ({time_unit})", ylabel="detached [%]", title="detached biofilm")
+    ax.legend(fontsize=8, loc="center left")
     fig.tight_layout()
     out = options.out or os.path.join(vio.output_directory(run.path("figures")),
                                       "detachment.png")

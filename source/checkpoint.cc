@@ -176,7 +176,8 @@ namespace viscofilm
         std::ofstream out(staging + "/state");
         out << std::setprecision(17) << "step " << state.step << "\ntime "
             << state.time << "\nprevious_time_step " << state.previous_time_step
-            << "\ndetached " << state.detached_mass << "\nnext_time_step "
+            << "\ndetached " << state.detached.released << "\ndetached_outflow "
+            << state.detached.outflow << "\nnext_time_step "
             << state.next_time_step << "\n";
         for (const auto &[path, value] : critical_entries(prm))
           out << "parameter " << path << " = " << value << "\n";
@@ -232,7 +233,8 @@ namespace viscofilm
     // "name value" lines of the state, then "parameter path = value" lines.
     const std::map<std::string, double *> numbers = {
       {"previous_time_step", &state.previous_time_step},
-      {"detached", &state.detached_mass},
+      {"detached", &state.detached.released},
+      {"detached_outflow", &state.detached.outflow},
       {"next_time_step", &state.next_time_step}};
     std::map<std::string, std::string> saved;
     while (std::getline(in, line) && line != "snapshots")

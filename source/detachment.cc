@@ -4,7 +4,11 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include <deal.II/lac/affine_constraints.h>
+
+#include <viscofilm/departure_feet.h>
 #include <viscofilm/detachment.h>
+#include <viscofilm/input.h>
 #include <viscofilm/output.h>
 #include <viscofilm/total_stress.h>
 
@@ -22,9 +26,12 @@ namespace viscofilm
                       Patterns::Bool(),
                       "true: biofilm whose load exceeds Stress threshold for "
                       "Duration is released: φ := 0 at those nodes after the "
-                      "step's transport; the released mass is carried away by "
-                      "the flow (statistics.csv: detached_mass, "
-                      "detached_mass_total, where it came from; "
+                      "step's transport, and the released mass goes into the "
+                      "detached fraction φ_d, which the flow carries and which "
+                      "leaves through outflow boundaries (statistics.csv: "
+                      "detached_mass, detached_mass_total, "
+                      "detached_mass_in_flow, detached_mass_outflow, where it "
+                      "came from; the snapshots' phi_detached; "
                       "doc/detachment.md). false: the loads are only reported.");
     prm.declare_entry("Criterion",
                       "von Mises",
@@ -40,12 +47,23 @@ namespace viscofilm
                       "How long (in the run's time unit) the load at a node must "
                       "stay above Stress threshold before the node is released; "
                       "0: at once.");
+    prm.declare_entry("Release unattached",
+                      "true",
+                      Patterns::Bool(),
+                      "With Release = true: after the release by strength, "
+                      "biofilm (φ >= Interface volume fraction) that no path "
+                      "of biofilm joins to one of Walls is released too: a "
+                      "piece cut off from the wall, or an island that never "
+                      "touched it (statistics.csv: detached_by_connectivity). "
+                      "Needs at least one boundary in Walls. false: only the "
+                      "strength releases.");
     prm.leave_subsection();
   }
 
 
   void
-  Detachment::Parameters::parse_parameters(ParameterHandler &prm)
+  Detachment::Parameters::parse_parameters(ParameterHandler &              prm,
+                                           const BiofilmLoads::Parameters &loads)
   {
     prm.enter_subsection("Detachment");
     enabled   = prm.get_bool("Release");
@@ -53,29 +71,49 @@ namespace viscofilm
                    Criterion::interface_traction :
                    Criterion::von_mises);
     duration  = prm.get_double("Duration");
+    release_unattached = prm.get_bool("Release unattached");
     prm.leave_subsection();
+    check_input(!enabled || !release_unattached || !loads.walls.empty(),
+                "Detachment/Release unattached = true needs the walls the biofilm "
+                "is attached to in Detachment/Walls, which names no boundary of "
+                "this mesh (set Walls, or Release unattached = false)");
   }
 
 
-  Detachment::Detachment(const Parameters &              parameters,
-                         const BiofilmLoads::Parameters &loads,
-                         const Model &                   model,
-                         const StokesSolver &            stokes,
-                         VolumeFraction &                volume_fraction,
-                         const ElasticStress &           stress)
+  Detachment::Detachment(const Parameters &                             parameters,
+                         const BiofilmLoads::Parameters &               loads,
+                         const Model &                                  model,
+                         const parallel::distributed::Triangulation<dim> &triangulation,
+                         const VolumeFraction::Parameters &             transport,
+                         const BoundaryConditions &                     boundary_conditions,
+                         const StokesSolver &                           stokes,
+                         VolumeFraction &                               volume_fraction,
+                         const ElasticStress &                          stress)
     : parameters(parameters)
     , loads(loads)
     , model(model)
     , stokes(stokes)
     , volume_fraction(volume_fraction)
     , stress(stress)
+    , boundary_conditions(boundary_conditions)
+    , detached(triangulation, transport, boundary_conditions, "phi_detached", false)
   {}
 
 
   void
   Detachment::setup_dofs()
   {
-    if (!parameters.enabled || parameters.duration == 0)
+    if (!parameters.enabled)
+      return;
+    detached.setup_dofs();
+    setup_clock();
+  }
+
+
+  void
+  Detachment::setup_clock()
+  {
+    if (parameters.duration == 0)
       return;
     const DoFHandler<dim> &dofs = volume_fraction.dof_handler();
     clock.reinit(dofs.locally_owned_dofs(),
@@ -137,56 +175,71 @@ namespace viscofilm
 
 
   void
-  Detachment::release(const double time_step)
+  Detachment::release(DepartureFeet &feet, const double time_step, const unsigned int order)
   {
-    step_mass = 0;
+    step_mass         = 0;
+    connectivity_mass = 0;
     if (!parameters.enabled)
       return;
-    const DoFHandler<dim> &              dofs = volume_fraction.dof_handler();
-    const IndexSet                       owned = dofs.locally_owned_dofs();
-    const TrilinosWrappers::MPI::Vector  load  = nodal_load();
-    const TrilinosWrappers::MPI::Vector &phi   = volume_fraction.solution();
-
-    // Which owned nodes go: those whose load has exceeded the strength for
-    // Duration (with Duration = 0 the clock is only this step).
-    TrilinosWrappers::MPI::Vector clock_now(owned, dofs.get_communicator());
-    TrilinosWrappers::MPI::Vector before(owned, dofs.get_communicator());
-    for (const types::global_dof_index i : owned)
+    // What was released before is carried by the step's flow as φ was
+    // (nothing to carry, nothing to compute: φ_d >= 0). No boundary brings
+    // φ_d in, so what the step takes from ∫φ_d has left through the
+    // outflow boundaries: the scheme's k∫φ_d u·n ds wherever its mass fixer
+    // reaches it (doc/detachment.md).
+    if (detached.range().second > 0)
       {
-        clock_now(i) = (parameters.duration > 0 ? clock(i) : 0.0);
-        before(i)    = phi(i);
+        const double mass = detached.integral();
+        detached.advance(stokes, feet, model.diffusion, time_step, order);
+        total.outflow += mass - detached.integral();
       }
+
+    const DoFHandler<dim> &dofs  = volume_fraction.dof_handler();
+    const IndexSet         owned = dofs.locally_owned_dofs();
+    const MPI_Comm         comm  = dofs.get_communicator();
+    TrilinosWrappers::MPI::Vector before(owned, comm);
+    before = volume_fraction.solution();
     TrilinosWrappers::MPI::Vector after(before);
     std::vector<bool>             released(owned.n_elements(), false);
-    bool                          any = false;
-    for (const types::global_dof_index i : owned)
+
+    const auto released_anywhere = [&]() {
+      return Utilities::MPI::logical_or(std::find(released.begin(), released.end(), true) !=
+                                          released.end(),
+                                        comm);
+    };
+    release_by_strength(time_step, after, released);
+    const bool by_strength = released_anywhere();
+    if (by_strength)
+      volume_fraction.set(after);
+    if (parameters.release_unattached)
       {
-        clock_now(i) = (load(i) > loads.stress_threshold ? clock_now(i) + time_step : 0);
-        if (load(i) > loads.stress_threshold &&
-            clock_now(i) >= parameters.duration * (1 - 1e-12))
+        const double mass = volume_fraction.integral();
+        const auto   n_by_strength = std::count(released.begin(), released.end(), true);
+        release_unattached(volume_fraction.solution(), after, released);
+        if (Utilities::MPI::logical_or(std::count(released.begin(), released.end(), true) >
+                                         n_by_strength,
+                                       comm))
           {
-            after(i)                             = 0;
-            released[owned.index_within_set(i)] = true;
-            any                                  = true;
+            volume_fraction.set(after);
+            connectivity_mass = mass - volume_fraction.integral();
           }
       }
-    clock_now.compress(VectorOperation::insert);
-    after.compress(VectorOperation::insert);
-    if (parameters.duration > 0)
-      clock = clock_now;
-    if (!Utilities::MPI::logical_or(any, dofs.get_communicator()))
+    if (!released_anywhere())
       {
         record(TrilinosWrappers::MPI::Vector(), {});
         return;
       }
 
-    volume_fraction.set(after);
-    // φ's loss: what set() left of the release (hanging nodes follow their
-    // masters).
+    // φ's loss (what set() left of the release: hanging nodes follow their
+    // masters) goes into φ_d, node by node: φ_d's DoFHandler has φ's mesh and
+    // element, so deal.II numbers its dofs as φ's.
     before -= after;
+    TrilinosWrappers::MPI::Vector gained(owned, comm);
+    gained = detached.solution();
+    gained += before;
+    detached.set(gained);
     TrilinosWrappers::MPI::Vector loss(owned,
                                        DoFTools::extract_locally_relevant_dofs(dofs),
-                                       dofs.get_communicator());
+                                       comm);
     loss = before;
 
     // Where the released nodes are: their bounding box.
@@ -211,6 +264,161 @@ namespace viscofilm
               }
         }
     record(loss, released_nodes);
+  }
+
+
+  void
+  Detachment::release_by_strength(const double                   time_step,
+                                  TrilinosWrappers::MPI::Vector &phi,
+                                  std::vector<bool> &            released)
+  {
+    const DoFHandler<dim> &             dofs  = volume_fraction.dof_handler();
+    const IndexSet                      owned = dofs.locally_owned_dofs();
+    const TrilinosWrappers::MPI::Vector load  = nodal_load();
+    // Which owned nodes go: those whose load has exceeded the strength for
+    // Duration (with Duration = 0 the clock is only this step).
+    TrilinosWrappers::MPI::Vector clock_now(owned, dofs.get_communicator());
+    for (const types::global_dof_index i : owned)
+      {
+        const double previous = (parameters.duration > 0 ? clock(i) : 0.0);
+        clock_now(i) = (load(i) > loads.stress_threshold ? previous + time_step : 0);
+        if (load(i) > loads.stress_threshold &&
+            clock_now(i) >= parameters.duration * (1 - 1e-12))
+          {
+            phi(i)                              = 0;
+            released[owned.index_within_set(i)] = true;
+          }
+      }
+    clock_now.compress(VectorOperation::insert);
+    phi.compress(VectorOperation::insert);
+    if (parameters.duration > 0)
+      clock = clock_now;
+  }
+
+
+  void
+  Detachment::release_unattached(const TrilinosWrappers::MPI::Vector &ghosted_phi,
+                                 TrilinosWrappers::MPI::Vector &      phi,
+                                 std::vector<bool> &                  released)
+  {
+    const DoFHandler<dim> &dofs     = volume_fraction.dof_handler();
+    const IndexSet         owned    = dofs.locally_owned_dofs();
+    const IndexSet         relevant = DoFTools::extract_locally_relevant_dofs(dofs);
+    const MPI_Comm         comm     = dofs.get_communicator();
+    const unsigned int     n        = relevant.n_elements();
+
+    // The graph on this rank's biofilm nodes (by index within relevant):
+    // nodes of one cell (owned or ghost) are joined, and so are a
+    // constrained node and its masters (periodic images, hanging nodes).
+    std::vector<bool> biofilm(n);
+    for (unsigned int k = 0; k < n; ++k)
+      biofilm[k] = (ghosted_phi(relevant.nth_index_in_set(k)) >= loads.interface_level);
+    std::vector<std::vector<unsigned int>> cells; // each cell's biofilm nodes
+    std::vector<std::vector<unsigned int>> cells_of(n);
+    std::vector<bool>                      attached(n, false);
+    std::vector<types::global_dof_index>   local_dofs(dofs.get_fe().n_dofs_per_cell());
+    std::vector<types::global_dof_index>   face_dofs(dofs.get_fe().n_dofs_per_face());
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          cell->get_dof_indices(local_dofs);
+          std::vector<unsigned int> nodes;
+          for (const auto dof : local_dofs)
+            if (biofilm[relevant.index_within_set(dof)])
+              nodes.push_back(relevant.index_within_set(dof));
+          if (nodes.empty())
+            continue;
+          for (const unsigned int k : nodes)
+            cells_of[k].push_back(cells.size());
+          cells.push_back(nodes);
+          // The seeds: biofilm on a wall.
+          for (const unsigned int f : cell->face_indices())
+            if (cell->at_boundary(f) &&
+                std::any_of(loads.walls.begin(), loads.walls.end(), [&](const auto &wall) {
+                  return wall.id == cell->face(f)->boundary_id();
+                }))
+              {
+                cell->face(f)->get_dof_indices(face_dofs);
+                for (const auto dof : face_dofs)
+                  attached[relevant.index_within_set(dof)] =
+                    biofilm[relevant.index_within_set(dof)];
+              }
+        }
+    AffineConstraints<double> constraints(relevant);
+    DoFTools::make_hanging_node_constraints(dofs, constraints);
+    boundary_conditions.constrain_periodic(dofs, constraints);
+    constraints.close();
+    for (const auto &line : constraints.get_lines())
+      if (relevant.is_element(line.index) && biofilm[relevant.index_within_set(line.index)])
+        for (const auto &[master, weight] : line.entries)
+          if (relevant.is_element(master) && biofilm[relevant.index_within_set(master)])
+            {
+              const std::vector<unsigned int> pair = {relevant.index_within_set(line.index),
+                                                      relevant.index_within_set(master)};
+              for (const unsigned int k : pair)
+                cells_of[k].push_back(cells.size());
+              cells.push_back(pair);
+            }
+
+    // Flood from the walls on this rank, share with the ranks that see the
+    // same nodes, again until no rank attaches a node more.
+    std::vector<bool> cell_done(cells.size(), false);
+    for (types::global_dof_index n_attached = 0;;)
+      {
+        std::vector<unsigned int> front;
+        for (unsigned int k = 0; k < n; ++k)
+          if (attached[k])
+            front.push_back(k);
+        while (!front.empty())
+          {
+            const unsigned int k = front.back();
+            front.pop_back();
+            for (const unsigned int c : cells_of[k])
+              if (!cell_done[c])
+                {
+                  cell_done[c] = true;
+                  for (const unsigned int other : cells[c])
+                    if (!attached[other])
+                      {
+                        attached[other] = true;
+                        front.push_back(other);
+                      }
+                }
+          }
+        TrilinosWrappers::MPI::Vector shared;
+        shared.reinit(owned, relevant, comm, true);
+        for (unsigned int k = 0; k < n; ++k)
+          if (attached[k])
+            shared(relevant.nth_index_in_set(k)) += 1;
+        shared.compress(VectorOperation::add);
+        TrilinosWrappers::MPI::Vector sum(owned, comm);
+        for (const types::global_dof_index i : owned)
+          sum(i) = shared(i);
+        TrilinosWrappers::MPI::Vector seen(owned, relevant, comm);
+        seen = sum;
+        types::global_dof_index owned_attached = 0;
+        for (unsigned int k = 0; k < n; ++k)
+          {
+            const types::global_dof_index dof = relevant.nth_index_in_set(k);
+            attached[k]                       = attached[k] || seen(dof) > 0;
+            owned_attached += (attached[k] && owned.is_element(dof));
+          }
+        owned_attached = Utilities::MPI::sum(owned_attached, comm);
+        if (owned_attached == n_attached)
+          break;
+        n_attached = owned_attached;
+      }
+
+    for (const types::global_dof_index i : owned)
+      {
+        const unsigned int k = relevant.index_within_set(i);
+        if (biofilm[k] && !attached[k])
+          {
+            phi(i)                              = 0;
+            released[owned.index_within_set(i)] = true;
+          }
+      }
+    phi.compress(VectorOperation::insert);
   }
 
 
@@ -259,7 +467,7 @@ namespace viscofilm
     Utilities::MPI::max(high, comm, high);
 
     step_mass = moments[dim];
-    total += step_mass;
+    total.released += step_mass;
     const bool any = (low[0] <= high[0]);
     for (unsigned int d = 0; d < dim; ++d)
       {
@@ -276,7 +484,10 @@ namespace viscofilm
     if (!parameters.enabled)
       return;
     statistics.set("detached_mass", step_mass);
-    statistics.set("detached_mass_total", total);
+    statistics.set("detached_by_connectivity", connectivity_mass);
+    statistics.set("detached_mass_total", total.released);
+    statistics.set("detached_mass_in_flow", detached.integral());
+    statistics.set("detached_mass_outflow", total.outflow);
     for (unsigned int d = 0; d < dim; ++d)
       {
         const std::string x(1, "xyz"[d]);
@@ -287,47 +498,65 @@ namespace viscofilm
   }
 
 
-  double
-  Detachment::total_mass() const
+  void
+  Detachment::add_output(DataOut<dim> &data_out) const
+  {
+    if (parameters.enabled)
+      detached.add_output(data_out);
+  }
+
+
+  Detachment::Totals
+  Detachment::totals() const
   {
     return total;
   }
 
 
   void
-  Detachment::set_total_mass(const double mass)
+  Detachment::set_totals(const Totals &totals)
   {
-    total = mass;
+    total = totals;
   }
 
 
   void
   Detachment::prepare_for_refinement()
   {
+    if (!parameters.enabled)
+      return;
     if (clock.size() > 0)
       carrier.prepare(volume_fraction.dof_handler(), clock);
+    detached.prepare_for_refinement();
   }
 
 
   void
   Detachment::finish_refinement()
   {
-    if (!parameters.enabled || parameters.duration == 0)
+    if (!parameters.enabled)
       return;
-    const DoFHandler<dim> &       dofs = volume_fraction.dof_handler();
-    TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
-                                              dofs.get_communicator());
-    carrier.finish(dofs, distributed);
-    setup_dofs();
-    clock = distributed;
+    if (parameters.duration > 0)
+      {
+        const DoFHandler<dim> &       dofs = volume_fraction.dof_handler();
+        TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
+                                                  dofs.get_communicator());
+        carrier.finish(dofs, distributed);
+        setup_clock();
+        clock = distributed;
+      }
+    detached.finish_refinement();
   }
 
 
   void
   Detachment::prepare_for_checkpoint()
   {
+    if (!parameters.enabled)
+      return;
     if (clock.size() > 0)
       carrier.prepare_checkpoint(volume_fraction.dof_handler(), clock);
+    detached.prepare_for_checkpoint();
   }
 
 
@@ -335,5 +564,6 @@ namespace viscofilm
   Detachment::checkpoint_written()
   {
     carrier.release();
+    detached.checkpoint_written();
   }
 } // namespace viscofilm

@@ -39,7 +39,7 @@ namespace viscofilm
     departure_feet.parse_parameters(prm);
     stabilization.parse_parameters(prm);
     detachment.parse_parameters(prm, boundary_conditions);
-    release.parse_parameters(prm);
+    release.parse_parameters(prm, detachment);
     output.parse_parameters(prm);
     verification.parse_parameters(prm);
     checkpointing.parse_parameters(prm);

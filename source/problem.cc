@@ -48,6 +48,9 @@ namespace viscofilm
     , detachment(parameters.release,
                  parameters.detachment,
                  parameters.model,
+                 triangulation,
+                 parameters.stabilization,
+                 parameters.boundary_conditions,
                  stokes,
                  volume_fraction,
                  stress)
@@ -168,7 +171,7 @@ namespace viscofilm
                        stokes.previous_time_step(),
                        proposed_time_step,
                        output.snapshots(),
-                       detachment.total_mass()},
+                       detachment.totals()},
                       prm);
   }
 
@@ -188,7 +191,7 @@ namespace viscofilm
     stress.finish_refinement();
     volume_fraction.finish_refinement();
     detachment.finish_refinement();
-    detachment.set_total_mass(state.detached_mass);
+    detachment.set_totals(state.detached);
     mesh_changed();
     proposed_time_step = state.next_time_step;
     output.prepare(prm, state.step, state.snapshots);
@@ -407,7 +410,7 @@ namespace viscofilm
         // 4. Release what the accepted step's loads detach (Detachment/Release).
         {
           TimerOutput::Scope t(*computing_timer, "detachment");
-          detachment.release(time_step);
+          detachment.release(departure_feet, time_step, parameters.time_stepping.order);
         }
         return report;
       }
@@ -484,6 +487,7 @@ namespace viscofilm
         volume_fraction.add_output(data_out);
         stress.add_output(data_out, volume_fraction);
         loads.add_output(data_out);
+        detachment.add_output(data_out);
       });
   }
 

@@ -70,10 +70,14 @@ namespace viscofilm
   VolumeFraction::VolumeFraction(
     const parallel::distributed::Triangulation<dim> &triangulation,
     const Parameters &                             parameters,
-    const BoundaryConditions &                     boundary_conditions)
+    const BoundaryConditions &                     boundary_conditions,
+    const std::string &                            name,
+    const bool                                     inflow_from_boundaries)
     : parameters(parameters)
     , boundary_conditions(boundary_conditions)
     , mpi_communicator(triangulation.get_communicator())
+    , name(name)
+    , inflow_from_boundaries(inflow_from_boundaries)
     , fe(2)
     , dofs(triangulation)
   {}
@@ -108,6 +112,13 @@ namespace viscofilm
                                       mpi_communicator));
     sparsity.compress();
     system_matrix.reinit(sparsity);
+  }
+
+
+  double
+  VolumeFraction::inflow_value(const types::boundary_id id) const
+  {
+    return inflow_from_boundaries ? boundary_conditions.boundary(id).volume_fraction : 0.0;
   }
 
 
@@ -147,9 +158,7 @@ namespace viscofilm
                             face_quadrature.weight(q);
                   if (flux >= -tolerance)
                     continue;
-                  const double value =
-                    boundary_conditions.boundary(cell->face(f)->boundary_id())
-                      .volume_fraction;
+                  const double value = inflow_value(cell->face(f)->boundary_id());
                   cell->face(f)->get_dof_indices(face_dofs);
                   for (const auto dof : face_dofs)
                     if (!constraints.is_constrained(dof))
@@ -441,7 +450,7 @@ namespace viscofilm
     const std::vector<types::boundary_id> &inflow = feet.inflow_boundaries();
     for (unsigned int n = 0; n < nodes.size(); ++n)
       if (inflow[n] != numbers::invalid_boundary_id)
-        at_feet[n].fill(boundary_conditions.boundary(inflow[n]).volume_fraction);
+        at_feet[n].fill(inflow_value(inflow[n]));
 
     advected.reinit(owned, mpi_communicator);
     lower.reinit(owned, mpi_communicator);
@@ -679,7 +688,7 @@ namespace viscofilm
   void
   VolumeFraction::add_output(DataOut<dim> &data_out) const
   {
-    data_out.add_data_vector(dofs, current_solution, "volume_fraction");
+    data_out.add_data_vector(dofs, current_solution, name);
   }
 
 

@@ -7,6 +7,8 @@
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <viscofilm/detachment.h>
+
 #include <string>
 #include <vector>
 
@@ -38,7 +40,7 @@ namespace viscofilm
       /// The error controller's next step (0: none, TimeStepping).
       double                 next_time_step = 0;
       std::vector<XDMFEntry> snapshots;
-      double                 detached_mass = 0; // Detachment's total
+      Detachment::Totals     detached; // released and carried out so far
     };
 
     Checkpoint(const Parameters &parameters,

@@ -1,6 +1,7 @@
 // Detachment (doc/detachment.md): biofilm whose load exceeds its strength,
-// for a given duration, is released from the attached biofilm φ and counted
-// as detached mass, which the flow carries away.
+// for a given duration, and biofilm cut off from the walls, is released from
+// the attached biofilm φ into the detached fraction φ_d, which the flow
+// carries (a passive tracer) and which leaves through outflow boundaries.
 #ifndef viscofilm_detachment_h
 #define viscofilm_detachment_h
 
@@ -12,15 +13,18 @@
 #include <viscofilm/loads.h>
 #include <viscofilm/mesh_refinement.h>
 #include <viscofilm/model.h>
+#include <viscofilm/volume_fraction.h>
+
+#include <vector>
 
 namespace viscofilm
 {
   using namespace dealii;
 
   class StokesSolver;
-  class VolumeFraction;
   class ElasticStress;
   class CsvFile;
+  class DepartureFeet;
 
   class Detachment
   {
@@ -36,35 +40,56 @@ namespace viscofilm
 
       static void
       declare_parameters(ParameterHandler &prm);
+      /// Release unattached needs @p loads' Walls.
       void
-      parse_parameters(ParameterHandler &prm);
+      parse_parameters(ParameterHandler &prm, const BiofilmLoads::Parameters &loads);
 
       bool      enabled   = false;
       Criterion criterion = Criterion::von_mises;
       /// How long the load must exceed the strength before release.
       double duration = 0;
+      /// Release the biofilm connected to none of Detachment/Walls too.
+      bool release_unattached = true;
     };
 
-    /// The strength and the biofilm's outline are @p loads' Stress threshold
-    /// and Interface volume fraction.
-    Detachment(const Parameters &              parameters,
-               const BiofilmLoads::Parameters &loads,
-               const Model &                   model,
-               const StokesSolver &            stokes,
-               VolumeFraction &                volume_fraction,
-               const ElasticStress &           stress);
+    /// What has been released and what has left, kept by a checkpoint.
+    struct Totals
+    {
+      double released = 0; // ∫ of every release since t = 0
+      double outflow  = 0; // φ_d carried out through the boundary since t = 0
+    };
 
-    /// After VolumeFraction::setup_dofs(): the clocks of the duration.
+    /// The strength, the biofilm's outline and the walls it must be
+    /// connected to are @p loads' Stress threshold, Interface volume
+    /// fraction and Walls. φ_d lives on @p triangulation with φ's element
+    /// and transport scheme (@p transport).
+    Detachment(const Parameters &                             parameters,
+               const BiofilmLoads::Parameters &               loads,
+               const Model &                                  model,
+               const parallel::distributed::Triangulation<dim> &triangulation,
+               const VolumeFraction::Parameters &             transport,
+               const BoundaryConditions &                     boundary_conditions,
+               const StokesSolver &                           stokes,
+               VolumeFraction &                               volume_fraction,
+               const ElasticStress &                          stress);
+
+    /// After VolumeFraction::setup_dofs(): φ_d (0) and the clocks of the
+    /// duration.
     void
     setup_dofs();
 
-    /// After the transport of a step of length @p time_step: φ := 0 at the
-    /// nodes of the biofilm (φ >= the outline's value) whose load has
-    /// exceeded the strength for the duration. Collective.
+    /// After the transport of an accepted step of length @p time_step: φ_d
+    /// carried by the step's flow as φ was (@p feet, @p order), then φ := 0
+    /// at the nodes of the biofilm (φ >= the outline's value) whose load
+    /// has exceeded the strength for the duration and, with Release
+    /// unattached, at those connected to no wall; φ_d gains what φ lost.
+    /// Collective.
     void
-    release(const double time_step);
+    release(DepartureFeet &feet, const double time_step, const unsigned int order);
 
-    /// Columns detached_mass (this step), detached_mass_total and where this
+    /// Columns detached_mass (this step), detached_by_connectivity (the part
+    /// of it cut off from the walls), detached_mass_total,
+    /// detached_mass_in_flow (∫φ_d), detached_mass_outflow and where this
     /// step's release came from: detached_centroid_<x>, detached_<x>_min,
     /// detached_<x>_max per coordinate (0 when nothing was released). Only
     /// with Detachment/Release = true, so that other runs' files keep their
@@ -72,14 +97,17 @@ namespace viscofilm
     void
     add_statistics(CsvFile &statistics) const;
 
-    /// The total released so far, kept by a checkpoint.
-    double
-    total_mass() const;
+    /// phi_detached in the snapshots (with Release = true).
     void
-    set_total_mass(const double mass);
+    add_output(DataOut<dim> &data_out) const;
 
-    /// Keep the clocks across a mesh change and a checkpoint (as
-    /// VolumeFraction; nothing to keep with Duration = 0).
+    Totals
+    totals() const;
+    void
+    set_totals(const Totals &totals);
+
+    /// Keep φ_d and the clocks across a mesh change and a checkpoint (as
+    /// VolumeFraction; no clocks with Duration = 0).
     void
     prepare_for_refinement();
     void
@@ -96,6 +124,27 @@ namespace viscofilm
     TrilinosWrappers::MPI::Vector
     nodal_load() const;
 
+    /// The clocks on φ's dofs (Duration > 0).
+    void
+    setup_clock();
+
+    /// Strength: φ := 0 in @p phi (owned values) at the owned nodes whose
+    /// load has exceeded the strength for the duration, flagged in
+    /// @p released (by owned index); advances the clocks.
+    void
+    release_by_strength(const double                   time_step,
+                        TrilinosWrappers::MPI::Vector &phi,
+                        std::vector<bool> &            released);
+
+    /// Connectivity: φ := 0 in @p phi at the owned biofilm nodes that no
+    /// path of biofilm nodes (through the cells, and the constraints'
+    /// periodic and hanging-node links) joins to a node on a wall.
+    /// @p ghosted_phi: φ with ghosts.
+    void
+    release_unattached(const TrilinosWrappers::MPI::Vector &ghosted_phi,
+                       TrilinosWrappers::MPI::Vector &      phi,
+                       std::vector<bool> &                  released);
+
     /// Mass, centroid and bounding box of the release @p released (φ's
     /// loss, ghosted).
     void
@@ -108,14 +157,19 @@ namespace viscofilm
     const StokesSolver &            stokes;
     VolumeFraction &                volume_fraction;
     const ElasticStress &           stress;
+    const BoundaryConditions &      boundary_conditions;
+
+    /// φ_d: the detached biofilm, a passive tracer (doc/detachment.md).
+    VolumeFraction detached;
 
     /// Per node of φ: how long the load has exceeded the strength (ghosted;
     /// only with Duration > 0).
     TrilinosWrappers::MPI::Vector                  clock;
     SolutionCarrier<TrilinosWrappers::MPI::Vector> carrier;
 
-    double     step_mass  = 0;
-    double     total      = 0;
+    double     step_mass         = 0;
+    double     connectivity_mass = 0; // the part of step_mass cut off
+    Totals     total;
     Point<dim> centroid;
     Point<dim> lower, upper; // the released nodes' bounding box
   };

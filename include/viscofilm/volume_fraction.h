@@ -24,6 +24,7 @@
 #include <array>
 #include <map>
 #include <optional>
+#include <string>
 
 namespace viscofilm
 {
@@ -53,9 +54,15 @@ namespace viscofilm
       double gls_parameter = 1.0;
     };
 
+    /// @p name: the field's name in the snapshots. @p inflow_from_boundaries:
+    /// φ takes each boundary's Volume fraction where the flow enters; false:
+    /// 0 there (a second transported fraction, the detached biofilm, which
+    /// no boundary brings in).
     VolumeFraction(const parallel::distributed::Triangulation<dim> &triangulation,
                    const Parameters &                             parameters,
-                   const BoundaryConditions &                     boundary_conditions);
+                   const BoundaryConditions &                     boundary_conditions,
+                   const std::string &name                   = "volume_fraction",
+                   const bool         inflow_from_boundaries = true);
 
     void
     setup_dofs();
@@ -104,7 +111,7 @@ namespace viscofilm
     const DoFHandler<dim> &
     dof_handler() const;
 
-    /// Add volume_fraction to @p data_out.
+    /// Add the field (named as constructed) to @p data_out.
     void
     add_output(DataOut<dim> &data_out) const;
 
@@ -189,6 +196,10 @@ namespace viscofilm
     boundary_flux(const DoFHandler<dim> &                     stokes_dofs,
                   const TrilinosWrappers::MPI::BlockVector &velocity) const;
 
+    /// The value φ takes where the flow enters through boundary @p id.
+    double
+    inflow_value(const types::boundary_id id) const;
+
     /// Hanging nodes, and φ = boundary value on faces where the flow enters
     /// (their mean u·n below −1e-8 max|u|, so that round-off on a wall is
     /// no inflow).
@@ -198,6 +209,8 @@ namespace viscofilm
     const Parameters &        parameters;
     const BoundaryConditions &boundary_conditions;
     const MPI_Comm            mpi_communicator;
+    const std::string         name;
+    const bool                inflow_from_boundaries;
     const FE_Q<dim>             fe;
     DoFHandler<dim>             dofs;
     AffineConstraints<double> constraints;
