@@ -102,15 +102,17 @@ namespace viscofilm
                       "CG solve per application (expensive, for hard cases), "
                       ">= 0.");
     prm.declare_entry("AMG cycle",
-                      "W",
+                      "V",
                       Patterns::Selection("V|W"),
                       "Multigrid cycle of the velocity block's AMG (Trilinos ML).");
     prm.declare_entry("AMG cycles",
-                      "2",
+                      "1",
                       Patterns::Integer(1),
-                      "AMG cycles per application, >= 1. Two W-cycles keep "
-                      "FGMRES below 40 iterations up to Δx = 1/256 at viscosity "
-                      "ratio 1e4 (doc/performance.md).");
+                      "AMG cycles per application, >= 1. With AMG matrix = Q2, "
+                      "two W-cycles keep FGMRES below 40 iterations up to "
+                      "Δx = 1/256 at viscosity ratio 1e4; one V-cycle of the "
+                      "sub-cell matrix needs more iterations but less time "
+                      "(doc/performance.md).");
     prm.declare_entry("AMG smoother sweeps",
                       "2",
                       Patterns::Integer(1),
@@ -124,8 +126,10 @@ namespace viscofilm
                       "Chebyshev",
                       Patterns::Selection("Chebyshev|symmetric Gauss-Seidel"),
                       "ML's smoother on each level of the velocity block's AMG.");
+    // The fastest measured (doc/performance.md, "The velocity AMG's matrix
+    // and cycle"): with the couplings between components in 2D, without in 3D.
     prm.declare_entry("AMG matrix",
-                      "Q2",
+                      dim == 2 ? "Q1 sub-cells" : "Q1 sub-cells by component",
                       Patterns::Selection("Q2|Q1 sub-cells|Q1 sub-cells by component"),
                       "The matrix ML builds its hierarchy from. Q2: the velocity "
                       "block of the system. Q1 sub-cells: the same operator "
@@ -137,8 +141,9 @@ namespace viscofilm
                       "applies the Q2 matrix. Q1 sub-cells by component: "
                       "the same without the couplings between velocity "
                       "components, dim Laplace-like blocks, by Korn's "
-                      "inequality still equivalent (ASPECT's choice) "
-                      "(doc/performance.md).");
+                      "inequality still equivalent (ASPECT's choice). "
+                      "Default: Q1 sub-cells in 2D, Q1 sub-cells by component "
+                      "in 3D, the faster in each (doc/performance.md).");
     prm.declare_entry("Velocity inner tolerance",
                       "1e-2",
                       Patterns::Double(0, 1),

@@ -158,9 +158,8 @@ namespace viscofilm
 
     /**
      * The velocity block (Res/k)(u, v) + (2η D(u), D(v)) with Q1 on the
-     * 2^dim sub-cells of each cell (FE_Q_iso_Q1(2)), for the AMG: each
-     * group's matrix goes to the global one by itself, so only its dofs
-     * couple (the sparsity of BlockPreconditioned::reinit()). Two Gauss
+     * 2^dim sub-cells of each cell (FE_Q_iso_Q1(2)), for the AMG: only the
+     * dofs of a group couple (the sparsity of BlockPreconditioned::reinit()). Two Gauss
      * points per direction and sub-cell integrate it exactly on
      * parallelograms. η is evaluated at these points from φ (averaged as the
      * system's); the implicit elastic viscosity, known at the Q2 points only,
@@ -180,9 +179,19 @@ namespace viscofilm
         , groups_per_subcell(groups.size() / GeometryInfo<dim>::max_children_per_cell)
         , volume_fraction(quadrature.size())
         , viscosity(quadrature.size())
+        , velocity_index(fe.n_dofs_per_cell(), numbers::invalid_unsigned_int)
+        , dof_indices(fe.n_dofs_per_cell())
         , phi_u(groups[0].size())
         , symgrad_phi_u(groups[0].size())
       {
+        for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+          if (fe.system_to_base_index(i).first.first == 0)
+            {
+              velocity_index[i] = velocity_dofs.size();
+              velocity_dofs.push_back(i);
+            }
+        cell_matrix.reinit(velocity_dofs.size(), velocity_dofs.size());
+        velocity_dof_indices.resize(velocity_dofs.size());
         for (unsigned int q = 0; q < quadrature.size(); ++q)
           {
             unsigned int s = 0;
@@ -192,29 +201,34 @@ namespace viscofilm
           }
       }
 
+      /// The sub-cell matrix of @p cell, whose φ is on @p phi_cell.
       void
-      add(const StokesCellMatrix &         cell,
-          const Model &                    model,
-          const StokesSolver::Averaging    averaging,
-          const AffineConstraints<double> &constraints,
-          TrilinosWrappers::SparseMatrix & matrix)
+      add(const DoFHandler<dim>::active_cell_iterator &cell,
+          const DoFHandler<dim>::active_cell_iterator &phi_cell,
+          const TrilinosWrappers::MPI::Vector &        phi,
+          const double                                 elastic_viscosity,
+          const double                                 mass_coefficient,
+          const Model &                                model,
+          const StokesSolver::Averaging                averaging,
+          const AffineConstraints<double> &            constraints,
+          TrilinosWrappers::SparseMatrix &             matrix)
       {
-        values.reinit(Triangulation<dim>::cell_iterator(cell.cell));
-        phi_values.reinit(cell.volume_fraction_cell);
-        phi_values.get_function_values(cell.volume_fraction, volume_fraction);
+        values.reinit(Triangulation<dim>::cell_iterator(cell));
+        phi_values.reinit(phi_cell);
+        phi_values.get_function_values(phi, volume_fraction);
         for (unsigned int q = 0; q < quadrature.size(); ++q)
           viscosity[q] = model.viscosity(volume_fraction[q]);
         StokesSolver::average_viscosity(averaging, values.get_JxW_values(), viscosity);
-        const double elastic_viscosity = std::accumulate(cell.elastic_viscosity.begin(),
-                                                         cell.elastic_viscosity.end(),
-                                                         0.0) /
-                                         cell.elastic_viscosity.size();
         const FEValuesExtractors::Vector velocities(0);
         const unsigned int               n = groups[0].size();
-        std::vector<FullMatrix<double>>  matrices(groups.size(), FullMatrix<double>(n, n));
+        // One matrix for the cell's velocity dofs: entries of dofs in no
+        // common group stay zero, and distribute_local_to_global() skips
+        // zeros. (Not the pressure dofs: a hanging one would get a diagonal
+        // entry outside the velocity block.)
+        cell_matrix = 0;
         for (unsigned int q = 0; q < quadrature.size(); ++q)
           {
-            const double mass = cell.mass_coefficient * values.JxW(q);
+            const double mass = mass_coefficient * values.JxW(q);
             const double stiffness =
               2 * (viscosity[q] + elastic_viscosity) * values.JxW(q);
             for (unsigned int g = subcell_of_point[q] * groups_per_subcell;
@@ -227,20 +241,16 @@ namespace viscofilm
                     symgrad_phi_u[a] = values[velocities].symmetric_gradient(groups[g][a], q);
                   }
                 for (unsigned int a = 0; a < n; ++a)
-                  for (unsigned int b = 0; b <= a; ++b)
-                    matrices[g](a, b) += mass * (phi_u[a] * phi_u[b]) +
-                                         stiffness * (symgrad_phi_u[a] * symgrad_phi_u[b]);
+                  for (unsigned int b = 0; b < n; ++b)
+                    cell_matrix(velocity_index[groups[g][a]], velocity_index[groups[g][b]]) +=
+                      mass * (phi_u[a] * phi_u[b]) +
+                      stiffness * (symgrad_phi_u[a] * symgrad_phi_u[b]);
               }
           }
-        for (unsigned int g = 0; g < groups.size(); ++g)
-          {
-            for (unsigned int a = 0; a < n; ++a)
-              for (unsigned int b = a + 1; b < n; ++b)
-                matrices[g](a, b) = matrices[g](b, a);
-            constraints.distribute_local_to_global(matrices[g],
-                                                   global_indices(groups[g], cell.dof_indices),
-                                                   matrix);
-          }
+        cell->get_dof_indices(dof_indices);
+        for (unsigned int i = 0; i < velocity_dofs.size(); ++i)
+          velocity_dof_indices[i] = dof_indices[velocity_dofs[i]];
+        constraints.distribute_local_to_global(cell_matrix, velocity_dof_indices, matrix);
       }
 
     private:
@@ -253,6 +263,13 @@ namespace viscofilm
       std::vector<unsigned int>                     subcell_of_point;
       std::vector<double>                           volume_fraction;
       std::vector<double>                           viscosity;
+      /// The cell's velocity dofs (local indices), the position of each
+      /// local dof among them, their global indices.
+      std::vector<unsigned int>                     velocity_dofs;
+      std::vector<unsigned int>                     velocity_index;
+      FullMatrix<double>                            cell_matrix;
+      std::vector<types::global_dof_index>          dof_indices;
+      std::vector<types::global_dof_index>          velocity_dof_indices;
       std::vector<Tensor<1, dim>>                   phi_u;
       std::vector<SymmetricTensor<2, dim>>          symgrad_phi_u;
     };
@@ -307,6 +324,8 @@ namespace viscofilm
     private:
       void
       build_preconditioner();
+      void
+      assemble_subcell_matrix();
 
       using AMGMatrix = StokesSolver::AMGMatrix;
 
@@ -318,10 +337,22 @@ namespace viscofilm
       TrilinosWrappers::BlockSparseMatrix system_matrix;
       TrilinosWrappers::BlockSparseMatrix preconditioner_matrix; // (1/η) M_p
       /// The velocity block with Q1 on sub-cells (AMG matrix = Q1 sub-cells
-      /// …), its coupling groups (subcell_groups()) and their assembler.
+      /// …) and its coupling groups (subcell_groups()). It serves only to
+      /// build the AMG, so it is assembled only when the AMG is built
+      /// (assemble_subcell_matrix()), from what the last matrix assembly
+      /// recorded of each cell: its φ cell and mean elastic viscosity, φ and
+      /// the mass coefficient.
       TrilinosWrappers::SparseMatrix         subcell_matrix;
       std::vector<std::vector<unsigned int>> groups;
-      std::unique_ptr<SubcellAssembler>      subcells;
+      struct SubcellSource
+      {
+        DoFHandler<dim>::active_cell_iterator cell, volume_fraction_cell;
+        double                                elastic_viscosity;
+      };
+      std::vector<SubcellSource>           subcell_sources;
+      const TrilinosWrappers::MPI::Vector *volume_fraction  = nullptr;
+      double                               mass_coefficient = 0;
+      const AffineConstraints<double> *    constraints      = nullptr;
 
       bool preconditioner_is_current      = false; // the velocity AMG
       bool mass_preconditioner_is_current = false; // Jacobi of (1/η) M_p
@@ -423,8 +454,7 @@ namespace viscofilm
     {
       system_matrix         = 0;
       preconditioner_matrix = 0;
-      if (parameters.amg_matrix != AMGMatrix::q2)
-        subcell_matrix = 0;
+      subcell_sources.clear();
       viscosity_now.clear();
       change_integrals[0] = change_integrals[1] = 0;
     }
@@ -454,11 +484,14 @@ namespace viscofilm
 
       if (parameters.amg_matrix != AMGMatrix::q2)
         {
-          if (!subcells)
-            subcells = std::make_unique<SubcellAssembler>(dofs->get_fe().base_element(1),
-                                                          cell.volume_fraction_cell->get_fe(),
-                                                          groups);
-          subcells->add(cell, model, parameters.averaging, constraints, subcell_matrix);
+          subcell_sources.push_back(
+            {cell.cell,
+             cell.volume_fraction_cell,
+             std::accumulate(cell.elastic_viscosity.begin(), cell.elastic_viscosity.end(), 0.0) /
+               cell.elastic_viscosity.size()});
+          volume_fraction   = &cell.volume_fraction;
+          mass_coefficient  = cell.mass_coefficient;
+          this->constraints = &constraints;
         }
 
       // η at the quadrature points, for the AMG's rebuild criterion (Reuse).
@@ -483,9 +516,6 @@ namespace viscofilm
     {
       system_matrix.compress(VectorOperation::add);
       preconditioner_matrix.compress(VectorOperation::add);
-      if (parameters.amg_matrix != AMGMatrix::q2)
-        subcell_matrix.compress(VectorOperation::add);
-      subcells.reset();
       mass_preconditioner_is_current = false;
       first_solve_with_matrix        = true;
       // Keep the AMG while it still fits the new matrix (Reuse).
@@ -507,6 +537,30 @@ namespace viscofilm
 
 
     void
+    BlockPreconditioned::assemble_subcell_matrix()
+    {
+      subcell_matrix = 0;
+      if (!subcell_sources.empty())
+        {
+          SubcellAssembler subcells(dofs->get_fe().base_element(1),
+                                    subcell_sources[0].volume_fraction_cell->get_fe(),
+                                    groups);
+          for (const SubcellSource &source : subcell_sources)
+            subcells.add(source.cell,
+                         source.volume_fraction_cell,
+                         *volume_fraction,
+                         source.elastic_viscosity,
+                         mass_coefficient,
+                         model,
+                         parameters.averaging,
+                         *constraints,
+                         subcell_matrix);
+        }
+      subcell_matrix.compress(VectorOperation::add);
+    }
+
+
+    void
     BlockPreconditioned::build_preconditioner()
     {
       TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
@@ -521,6 +575,8 @@ namespace viscofilm
       amg_data.aggregation_threshold = parameters.amg_aggregation_threshold;
       amg_data.w_cycle               = parameters.amg_w_cycle;
       amg_data.n_cycles              = parameters.amg_cycles;
+      if (parameters.amg_matrix != AMGMatrix::q2)
+        assemble_subcell_matrix();
       velocity_amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
       velocity_amg->initialize(parameters.amg_matrix == AMGMatrix::q2 ?
                                  system_matrix.block(0, 0) :
