@@ -13,10 +13,7 @@
 #include <deal.II/fe/fe_system.h>
 
 #include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
-#include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <deal.II/numerics/data_out.h>
@@ -29,11 +26,18 @@
 
 #include <functional>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace viscofilm
 {
   using namespace dealii;
 
+  class StokesLinearSolver;
+
+  /// The Stokes solve of a time step: its dofs and solutions, the assembly
+  /// (stokes_assembly.cc), a linear-solver strategy per Method
+  /// (stokes_linear_solver.h) and diagnostics (stokes_diagnostics.cc).
   class StokesSolver
   {
   public:
@@ -51,6 +55,17 @@ namespace viscofilm
       arithmetic, // cell mean of η
       harmonic,   // cell harmonic mean of η
       geometric   // cell geometric mean of η
+    };
+
+    /// The matrix of the velocity block's AMG: the block itself, or the same
+    /// operator with Q1 on the 2^dim sub-cells of each cell (FE_Q_iso_Q1(2),
+    /// the same dofs): sparser and spectrally equivalent; by component:
+    /// without the couplings between velocity components (Korn).
+    enum class AMGMatrix
+    {
+      q2,
+      q1_subcells,
+      q1_subcells_by_component
     };
 
     /// The pressure space of the Taylor–Hood pair.
@@ -84,6 +99,10 @@ namespace viscofilm
       unsigned int amg_cycles          = 2;
       unsigned int amg_smoother_sweeps = 2;
       double       amg_aggregation_threshold = 0.02;
+      /// ML's smoother: "Chebyshev" or "symmetric Gauss-Seidel".
+      std::string  amg_smoother = "Chebyshev";
+      /// The matrix ML builds the velocity block's hierarchy from.
+      AMGMatrix    amg_matrix = AMGMatrix::q2;
       double       velocity_inner_tolerance  = 1e-2; // expensive iterations
       unsigned int velocity_inner_iterations = 1000;
       double       schur_inner_tolerance     = 1e-3;
@@ -125,6 +144,7 @@ namespace viscofilm
                  const Model &                                  model,
                  const BoundaryConditions &                     boundary_conditions,
                  const unsigned int                             order);
+    ~StokesSolver();
 
     /// Distribute dofs, build sparsity patterns, zero the solution.
     void
@@ -250,17 +270,16 @@ namespace viscofilm
     double
     viscosity_change_since_build() const;
 
+    /// The cell's viscosities replaced by one average (Viscosity
+    /// averaging; none leaves them as they are).
+    static void
+    average_viscosity(const Averaging            averaging,
+                      const std::vector<double> &JxW,
+                      std::vector<double> &      viscosity);
+
   private:
     void
     make_constraints(const double time);
-    void
-    build_preconditioner();
-    unsigned int
-    solve_block_preconditioned(TrilinosWrappers::MPI::BlockVector &distributed);
-    /// Direct or thesis: the whole system as one matrix. Returns the
-    /// iteration count (0 if direct).
-    unsigned int
-    solve_monolithic(TrilinosWrappers::MPI::BlockVector &distributed);
     /// Shift the pressure to mean zero unless an outflow boundary fixes it.
     void
     normalize_pressure(TrilinosWrappers::MPI::BlockVector &distributed);
@@ -279,10 +298,6 @@ namespace viscofilm
     IndexSet                  locally_relevant_dofs;
     AffineConstraints<double> constraints;
 
-    TrilinosWrappers::BlockSparseMatrix system_matrix;
-    TrilinosWrappers::BlockSparseMatrix preconditioner_matrix; // (1/η) M_p
-    TrilinosWrappers::SparseMatrix      monolithic_matrix;     // direct, thesis
-
     TrilinosWrappers::MPI::BlockVector system_rhs;
     TrilinosWrappers::MPI::BlockVector current_solution; // ghosted
     TrilinosWrappers::MPI::BlockVector old_solution;     // ghosted, u^n
@@ -296,28 +311,13 @@ namespace viscofilm
     std::vector<Tensor<1, dim>>          old_velocity_at_feet; // per owned cell and q
     std::vector<Tensor<1, dim>>        previous_velocity_at_feet; // u^{n-1}, BDF2
 
-    std::unique_ptr<DataPostprocessor<dim>> flow_postprocessor;
     SolutionCarrier<TrilinosWrappers::MPI::BlockVector> carrier;
     SolutionCarrier<TrilinosWrappers::MPI::BlockVector> previous_carrier; // Order = 2
 
     bool matrix_is_current = false;
-    bool preconditioner_is_current = false;      // the velocity AMG
-    bool mass_preconditioner_is_current = false; // Jacobi of (1/η) M_p
 
-    /// Reuse of the AMG: η at each owned cell's quadrature points when it
-    /// was built (empty: no AMG for this mesh), the outer iterations of the
-    /// first solve after that build, whether the next solve is the first
-    /// with a newly assembled matrix, and whether that solve asked for a
-    /// rebuild at the next assembly.
-    std::vector<double> viscosity_at_build;
-    unsigned int        iterations_after_build = 0;
-    bool                first_solve_with_matrix = false;
-    bool                rebuild_requested       = false;
-    unsigned int        n_builds                = 0;
-    double              viscosity_change        = 0;
-
-    std::unique_ptr<TrilinosWrappers::PreconditionAMG>    velocity_amg;
-    std::unique_ptr<TrilinosWrappers::PreconditionJacobi> mass_jacobi;
+    /// The matrices, preconditioners and solver (Method).
+    std::unique_ptr<StokesLinearSolver> linear_solver;
   };
 } // namespace viscofilm
 

@@ -1,0 +1,104 @@
+// The linear-solver strategies of the Stokes system (doc/structure.md): the
+// assembly (stokes_assembly.cc) hands each cell's matrix to the strategy,
+// which keeps whatever matrices and preconditioners it needs and solves.
+#ifndef viscofilm_stokes_linear_solver_h
+#define viscofilm_stokes_linear_solver_h
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/trilinos_parallel_block_vector.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <viscofilm/model.h>
+#include <viscofilm/stokes.h>
+
+#include <memory>
+#include <vector>
+
+namespace viscofilm
+{
+  using namespace dealii;
+
+  /// One cell's part of the Stokes matrix, as the assembly computed it.
+  struct StokesCellMatrix
+  {
+    const DoFHandler<dim>::active_cell_iterator &cell;
+    /// The Q2–Q1 (or P1disc) values, gradients and JxW on @p cell.
+    const FEValues<dim> &fe_values;
+    /// η at the quadrature points, the implicit elastic viscosity included,
+    /// and that elastic part alone (zero without it).
+    const std::vector<double> &viscosity;
+    const std::vector<double> &elastic_viscosity;
+    /// Res/k (times the BDF2 factor): the coefficient of (u, v).
+    double mass_coefficient;
+    /// φ on the same cell, for matrices at other quadrature points.
+    const DoFHandler<dim>::active_cell_iterator &volume_fraction_cell;
+    const TrilinosWrappers::MPI::Vector &         volume_fraction;
+    const std::vector<types::global_dof_index> &  dof_indices;
+    const FullMatrix<double> &                    matrix;
+  };
+
+
+  /// How the Stokes system is solved: one class per Stokes solver/Method.
+  class StokesLinearSolver
+  {
+  public:
+    static std::unique_ptr<StokesLinearSolver>
+    create(const StokesSolver::Parameters &parameters, const Model &model);
+
+    virtual ~StokesLinearSolver() = default;
+
+    /// Whether the pressure's level must be fixed by a constraint (a
+    /// factorisation needs a nonsingular matrix) where no boundary fixes it.
+    virtual bool
+    pins_pressure() const = 0;
+
+    /// New dofs: sparsity patterns and matrices; drops preconditioners.
+    /// Block 0: the velocity, block 1: the pressure.
+    virtual void
+    reinit(const DoFHandler<dim> &           dofs,
+           const AffineConstraints<double> & constraints,
+           const std::vector<IndexSet> &     owned_partitioning,
+           const std::vector<IndexSet> &     relevant_partitioning) = 0;
+
+    /// A new matrix: zero, add every owned cell, finish.
+    virtual void
+    start_matrix() = 0;
+    virtual void
+    add_cell_matrix(const StokesCellMatrix &         cell,
+                    const AffineConstraints<double> &constraints) = 0;
+    virtual void
+    finish_matrix() = 0;
+
+    /// Solve for @p solution (owned entries) from the first guess @p guess
+    /// (ghosted); returns the outer Krylov iterations (0 if direct). Throws
+    /// with the residual if it does not converge.
+    virtual unsigned int
+    solve(const TrilinosWrappers::MPI::BlockVector &rhs,
+          const TrilinosWrappers::MPI::BlockVector &guess,
+          const AffineConstraints<double> &         constraints,
+          TrilinosWrappers::MPI::BlockVector &      solution) = 0;
+
+    /// Statistics of the velocity AMG (block preconditioned; 0 otherwise).
+    virtual unsigned int
+    n_preconditioner_builds() const;
+    virtual double
+    viscosity_change_since_build() const;
+  };
+
+
+  /// The strategies (stokes_block_preconditioned.cc, stokes_monolithic.cc).
+  std::unique_ptr<StokesLinearSolver>
+  make_block_preconditioned_solver(const StokesSolver::Parameters &parameters,
+                                   const Model &                   model);
+  std::unique_ptr<StokesLinearSolver>
+  make_direct_solver(const StokesSolver::Parameters &parameters);
+  std::unique_ptr<StokesLinearSolver>
+  make_thesis_solver(const StokesSolver::Parameters &parameters);
+} // namespace viscofilm
+
+#endif

@@ -1,0 +1,694 @@
+// Stokes solver/Method = block preconditioned: FGMRES with a block
+// triangular preconditioner, AMG for the velocity block and the 1/η-weighted
+// pressure mass matrix for the Schur complement (doc/numerics.md).
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/lac/affine_constraints.templates.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q_iso_q1.h>
+#include <deal.II/fe/fe_system.h>
+
+#include <deal.II/lac/block_sparsity_pattern.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/trilinos_block_sparse_matrix.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <viscofilm/stokes_linear_solver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace viscofilm
+{
+  namespace
+  {
+    /**
+     * Block upper-triangular preconditioner for [A B^T; B 0] (step-55's
+     * approach): the Schur complement B A^{-1} B^T is replaced by the
+     * (1/η)-weighted pressure mass matrix, which is spectrally equivalent to
+     * it for variable viscosity, and A^{-1} by AMG cycles (cheap) or by
+     * an AMG-preconditioned CG solve (expensive, ASPECT's fallback for hard
+     * cases such as hanging nodes at large viscosity contrasts). FGMRES
+     * tolerates that the inner CG solves make it vary from call to call.
+     */
+    class BlockSchurPreconditioner : public Subscriptor
+    {
+    public:
+      BlockSchurPreconditioner(
+        const TrilinosWrappers::BlockSparseMatrix &system_matrix,
+        const TrilinosWrappers::SparseMatrix &     weighted_mass,
+        const TrilinosWrappers::PreconditionAMG &  velocity_amg,
+        const TrilinosWrappers::PreconditionJacobi &mass_jacobi,
+        const StokesSolver::Parameters &            parameters,
+        const bool                                  expensive)
+        : system_matrix(system_matrix)
+        , weighted_mass(weighted_mass)
+        , velocity_amg(velocity_amg)
+        , mass_jacobi(mass_jacobi)
+        , parameters(parameters)
+        , expensive(expensive)
+      {}
+
+      void
+      vmult(TrilinosWrappers::MPI::BlockVector &      dst,
+            const TrilinosWrappers::MPI::BlockVector &src) const
+      {
+        // Pressure: −S z_p = r_p with S ≈ (1/η) M_p. A loose inner tolerance
+        // suffices: the mass matrix is only an approximation of S anyway.
+        {
+          SolverControl control(parameters.schur_inner_iterations,
+                                parameters.schur_inner_tolerance *
+                                  src.block(1).l2_norm());
+          SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+          dst.block(1) = 0;
+          if (src.block(1).l2_norm() > 0)
+            cg.solve(weighted_mass, dst.block(1), src.block(1), mass_jacobi);
+          dst.block(1) *= -1.0;
+        }
+        // Velocity: A z_u = r_u − B^T z_p.
+        {
+          TrilinosWrappers::MPI::Vector rhs(src.block(0));
+          system_matrix.block(0, 1).vmult(rhs, dst.block(1));
+          rhs.sadd(-1.0, src.block(0));
+          if (expensive)
+            {
+              SolverControl control(parameters.velocity_inner_iterations,
+                                    parameters.velocity_inner_tolerance *
+                                      rhs.l2_norm());
+              SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+              dst.block(0) = 0;
+              cg.solve(system_matrix.block(0, 0), dst.block(0), rhs, velocity_amg);
+            }
+          else
+            velocity_amg.vmult(dst.block(0), rhs);
+        }
+      }
+
+    private:
+      const TrilinosWrappers::BlockSparseMatrix & system_matrix;
+      const TrilinosWrappers::SparseMatrix &      weighted_mass;
+      const TrilinosWrappers::PreconditionAMG &   velocity_amg;
+      const TrilinosWrappers::PreconditionJacobi &mass_jacobi;
+      const StokesSolver::Parameters &            parameters;
+      const bool                                  expensive;
+    };
+
+
+    /// The global indices of some of a cell's local dofs.
+    std::vector<types::global_dof_index>
+    global_indices(const std::vector<unsigned int> &           local,
+                   const std::vector<types::global_dof_index> &cell_dofs)
+    {
+      std::vector<types::global_dof_index> indices;
+      for (const unsigned int i : local)
+        indices.push_back(cell_dofs[i]);
+      return indices;
+    }
+
+
+    /**
+     * The groups of local velocity dofs that couple in the AMG's sub-cell
+     * matrix (AMG matrix = Q1 sub-cells …): group g lies in sub-cell
+     * g / groups_per_subcell, the nodes in that sub-cell's closure, all
+     * components or (by component) one each. Sub-cell s holds the nodes
+     * whose coordinate d is in [0, ½] if bit d of s is 0, in [½, 1] if it
+     * is 1. Checks that FE_Q_iso_Q1(2) numbers its dofs as @p fe does (the
+     * sub-cell matrix shares the Q2 DoFHandler): the same components and
+     * nodes.
+     */
+    std::vector<std::vector<unsigned int>>
+    subcell_groups(const FiniteElement<dim> &fe, const unsigned int groups_per_subcell)
+    {
+      const FESystem<dim> subcell_fe(FE_Q_iso_Q1<dim>(2), dim, fe.base_element(1), 1);
+      AssertThrow(subcell_fe.n_dofs_per_cell() == fe.n_dofs_per_cell(), ExcInternalError());
+      const std::vector<Point<dim>> &nodes = fe.base_element(0).get_unit_support_points();
+      const std::vector<Point<dim>> &subcell_nodes =
+        subcell_fe.base_element(0).get_unit_support_points();
+      std::vector<std::vector<unsigned int>> groups(
+        GeometryInfo<dim>::max_children_per_cell * groups_per_subcell);
+      for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+        {
+          const auto base = fe.system_to_base_index(i);
+          AssertThrow(subcell_fe.system_to_base_index(i) == base, ExcInternalError());
+          if (base.first.first != 0)
+            continue; // a pressure dof
+          const Point<dim> &node = nodes[base.second];
+          AssertThrow(node.distance(subcell_nodes[base.second]) < 1e-12, ExcInternalError());
+          const unsigned int group =
+            (groups_per_subcell == 1 ? 0 : fe.system_to_component_index(i).first);
+          for (unsigned int s = 0; s < GeometryInfo<dim>::max_children_per_cell; ++s)
+            {
+              bool inside = true;
+              for (unsigned int d = 0; d < dim; ++d)
+                inside &= (((s >> d) & 1) ? node[d] >= 0.5 : node[d] <= 0.5);
+              if (inside)
+                groups[s * groups_per_subcell + group].push_back(i);
+            }
+        }
+      return groups;
+    }
+
+
+    /**
+     * The velocity block (Res/k)(u, v) + (2η D(u), D(v)) with Q1 on the
+     * 2^dim sub-cells of each cell (FE_Q_iso_Q1(2)), for the AMG: only the
+     * dofs of a group couple (the sparsity of BlockPreconditioned::reinit()). Two Gauss
+     * points per direction and sub-cell integrate it exactly on
+     * parallelograms. η is evaluated at these points from φ (averaged as the
+     * system's); the implicit elastic viscosity, known at the Q2 points only,
+     * enters with its cell mean.
+     */
+    class SubcellAssembler
+    {
+    public:
+      SubcellAssembler(const FiniteElement<dim> &                     pressure_fe,
+                       const FiniteElement<dim> &                     volume_fraction_fe,
+                       const std::vector<std::vector<unsigned int>> &groups)
+        : fe(FE_Q_iso_Q1<dim>(2), dim, pressure_fe, 1)
+        , quadrature(QGauss<1>(2), 2)
+        , values(fe, quadrature, update_values | update_gradients | update_JxW_values)
+        , phi_values(volume_fraction_fe, quadrature, update_values)
+        , groups(groups)
+        , groups_per_subcell(groups.size() / GeometryInfo<dim>::max_children_per_cell)
+        , volume_fraction(quadrature.size())
+        , viscosity(quadrature.size())
+        , velocity_index(fe.n_dofs_per_cell(), numbers::invalid_unsigned_int)
+        , dof_indices(fe.n_dofs_per_cell())
+        , phi_u(groups[0].size())
+        , symgrad_phi_u(groups[0].size())
+      {
+        for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+          if (fe.system_to_base_index(i).first.first == 0)
+            {
+              velocity_index[i] = velocity_dofs.size();
+              velocity_dofs.push_back(i);
+            }
+        cell_matrix.reinit(velocity_dofs.size(), velocity_dofs.size());
+        velocity_dof_indices.resize(velocity_dofs.size());
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          {
+            unsigned int s = 0;
+            for (unsigned int d = 0; d < dim; ++d)
+              s |= (quadrature.point(q)[d] > 0.5 ? 1u : 0u) << d;
+            subcell_of_point.push_back(s);
+          }
+      }
+
+      /// The sub-cell matrix of @p cell, whose φ is on @p phi_cell.
+      void
+      add(const DoFHandler<dim>::active_cell_iterator &cell,
+          const DoFHandler<dim>::active_cell_iterator &phi_cell,
+          const TrilinosWrappers::MPI::Vector &        phi,
+          const double                                 elastic_viscosity,
+          const double                                 mass_coefficient,
+          const Model &                                model,
+          const StokesSolver::Averaging                averaging,
+          const AffineConstraints<double> &            constraints,
+          TrilinosWrappers::SparseMatrix &             matrix)
+      {
+        values.reinit(Triangulation<dim>::cell_iterator(cell));
+        phi_values.reinit(phi_cell);
+        phi_values.get_function_values(phi, volume_fraction);
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          viscosity[q] = model.viscosity(volume_fraction[q]);
+        StokesSolver::average_viscosity(averaging, values.get_JxW_values(), viscosity);
+        const FEValuesExtractors::Vector velocities(0);
+        const unsigned int               n = groups[0].size();
+        // One matrix for the cell's velocity dofs: entries of dofs in no
+        // common group stay zero, and distribute_local_to_global() skips
+        // zeros. (Not the pressure dofs: a hanging one would get a diagonal
+        // entry outside the velocity block.)
+        cell_matrix = 0;
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          {
+            const double mass = mass_coefficient * values.JxW(q);
+            const double stiffness =
+              2 * (viscosity[q] + elastic_viscosity) * values.JxW(q);
+            for (unsigned int g = subcell_of_point[q] * groups_per_subcell;
+                 g < (subcell_of_point[q] + 1) * groups_per_subcell;
+                 ++g)
+              {
+                for (unsigned int a = 0; a < n; ++a)
+                  {
+                    phi_u[a]         = values[velocities].value(groups[g][a], q);
+                    symgrad_phi_u[a] = values[velocities].symmetric_gradient(groups[g][a], q);
+                  }
+                for (unsigned int a = 0; a < n; ++a)
+                  for (unsigned int b = 0; b < n; ++b)
+                    cell_matrix(velocity_index[groups[g][a]], velocity_index[groups[g][b]]) +=
+                      mass * (phi_u[a] * phi_u[b]) +
+                      stiffness * (symgrad_phi_u[a] * symgrad_phi_u[b]);
+              }
+          }
+        cell->get_dof_indices(dof_indices);
+        for (unsigned int i = 0; i < velocity_dofs.size(); ++i)
+          velocity_dof_indices[i] = dof_indices[velocity_dofs[i]];
+        constraints.distribute_local_to_global(cell_matrix, velocity_dof_indices, matrix);
+      }
+
+    private:
+      const FESystem<dim>                           fe;
+      const QIterated<dim>                          quadrature;
+      FEValues<dim>                                 values;
+      FEValues<dim>                                 phi_values;
+      const std::vector<std::vector<unsigned int>> &groups;
+      const unsigned int                            groups_per_subcell;
+      std::vector<unsigned int>                     subcell_of_point;
+      std::vector<double>                           volume_fraction;
+      std::vector<double>                           viscosity;
+      /// The cell's velocity dofs (local indices), the position of each
+      /// local dof among them, their global indices.
+      std::vector<unsigned int>                     velocity_dofs;
+      std::vector<unsigned int>                     velocity_index;
+      FullMatrix<double>                            cell_matrix;
+      std::vector<types::global_dof_index>          dof_indices;
+      std::vector<types::global_dof_index>          velocity_dof_indices;
+      std::vector<Tensor<1, dim>>                   phi_u;
+      std::vector<SymmetricTensor<2, dim>>          symgrad_phi_u;
+    };
+
+
+    class BlockPreconditioned : public StokesLinearSolver
+    {
+    public:
+      BlockPreconditioned(const StokesSolver::Parameters &parameters, const Model &model)
+        : parameters(parameters)
+        , model(model)
+      {}
+
+      bool
+      pins_pressure() const override
+      {
+        return false;
+      }
+
+      void
+      reinit(const DoFHandler<dim> &           dofs,
+             const AffineConstraints<double> & constraints,
+             const std::vector<IndexSet> &     owned_partitioning,
+             const std::vector<IndexSet> &     relevant_partitioning) override;
+
+      void
+      start_matrix() override;
+      void
+      add_cell_matrix(const StokesCellMatrix &         cell,
+                      const AffineConstraints<double> &constraints) override;
+      void
+      finish_matrix() override;
+
+      unsigned int
+      solve(const TrilinosWrappers::MPI::BlockVector &rhs,
+            const TrilinosWrappers::MPI::BlockVector &guess,
+            const AffineConstraints<double> &         constraints,
+            TrilinosWrappers::MPI::BlockVector &      solution) override;
+
+      unsigned int
+      n_preconditioner_builds() const override
+      {
+        return n_builds;
+      }
+
+      double
+      viscosity_change_since_build() const override
+      {
+        return viscosity_change;
+      }
+
+    private:
+      void
+      build_preconditioner();
+      void
+      assemble_subcell_matrix();
+
+      using AMGMatrix = StokesSolver::AMGMatrix;
+
+      const StokesSolver::Parameters &parameters;
+      const Model &                   model;
+      const DoFHandler<dim> *         dofs = nullptr;
+      MPI_Comm                        mpi_communicator = MPI_COMM_SELF;
+
+      TrilinosWrappers::BlockSparseMatrix system_matrix;
+      TrilinosWrappers::BlockSparseMatrix preconditioner_matrix; // (1/η) M_p
+      /// The velocity block with Q1 on sub-cells (AMG matrix = Q1 sub-cells
+      /// …) and its coupling groups (subcell_groups()). It serves only to
+      /// build the AMG, so it is assembled only when the AMG is built
+      /// (assemble_subcell_matrix()), from what the last matrix assembly
+      /// recorded of each cell: its φ cell and mean elastic viscosity, φ and
+      /// the mass coefficient.
+      TrilinosWrappers::SparseMatrix         subcell_matrix;
+      std::vector<std::vector<unsigned int>> groups;
+      struct SubcellSource
+      {
+        DoFHandler<dim>::active_cell_iterator cell, volume_fraction_cell;
+        double                                elastic_viscosity;
+      };
+      std::vector<SubcellSource>           subcell_sources;
+      const TrilinosWrappers::MPI::Vector *volume_fraction  = nullptr;
+      double                               mass_coefficient = 0;
+      const AffineConstraints<double> *    constraints      = nullptr;
+
+      bool preconditioner_is_current      = false; // the velocity AMG
+      bool mass_preconditioner_is_current = false; // Jacobi of (1/η) M_p
+
+      /// Reuse of the AMG: η at each owned cell's quadrature points when it
+      /// was built (empty: no AMG for this mesh) and while the matrix is
+      /// assembled, the integrals of |ln(η/η_built)| and of 1 then, the
+      /// outer iterations of the first solve after the build, whether the
+      /// next solve is the first with a newly assembled matrix, and whether
+      /// that solve asked for a rebuild at the next assembly.
+      std::vector<double> viscosity_at_build;
+      std::vector<double> viscosity_now;
+      double              change_integrals[2]     = {0, 0};
+      unsigned int        iterations_after_build  = 0;
+      bool                first_solve_with_matrix = false;
+      bool                rebuild_requested       = false;
+      unsigned int        n_builds                = 0;
+      double              viscosity_change        = 0;
+
+      std::unique_ptr<TrilinosWrappers::PreconditionAMG>    velocity_amg;
+      std::unique_ptr<TrilinosWrappers::PreconditionJacobi> mass_jacobi;
+    };
+
+
+    void
+    BlockPreconditioned::reinit(const DoFHandler<dim> &           dofs,
+                                const AffineConstraints<double> & constraints,
+                                const std::vector<IndexSet> &     owned_partitioning,
+                                const std::vector<IndexSet> &     relevant_partitioning)
+    {
+      this->dofs       = &dofs;
+      mpi_communicator = dofs.get_communicator();
+      const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
+
+      // The AMG refers to the matrix it was built from: drop it first.
+      velocity_amg.reset();
+      mass_jacobi.reset();
+      viscosity_at_build.clear();
+      rebuild_requested = false;
+      system_matrix.clear();
+      preconditioner_matrix.clear();
+      subcell_matrix.clear();
+
+      // Components 0 … dim − 1: u; dim: p.
+      Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
+      Table<2, DoFTools::Coupling> mass_coupling(dim + 1, dim + 1);
+      for (unsigned int c = 0; c < dim + 1; ++c)
+        for (unsigned int d = 0; d < dim + 1; ++d)
+          {
+            coupling[c][d] = (c == dim && d == dim) ? DoFTools::none : DoFTools::always;
+            mass_coupling[c][d] = (c == dim && d == dim) ? DoFTools::always : DoFTools::none;
+          }
+      TrilinosWrappers::BlockSparsityPattern sparsity(owned_partitioning,
+                                                      owned_partitioning,
+                                                      relevant_partitioning,
+                                                      mpi_communicator);
+      DoFTools::make_sparsity_pattern(dofs, coupling, sparsity, constraints, false, rank);
+      sparsity.compress();
+      system_matrix.reinit(sparsity);
+
+      TrilinosWrappers::BlockSparsityPattern mass_sparsity(owned_partitioning,
+                                                           owned_partitioning,
+                                                           relevant_partitioning,
+                                                           mpi_communicator);
+      DoFTools::make_sparsity_pattern(dofs, mass_coupling, mass_sparsity, constraints, false, rank);
+      mass_sparsity.compress();
+      preconditioner_matrix.reinit(mass_sparsity);
+
+      if (parameters.amg_matrix != AMGMatrix::q2)
+        {
+          groups = subcell_groups(dofs.get_fe(),
+                                  parameters.amg_matrix == AMGMatrix::q1_subcells_by_component ?
+                                    dim :
+                                    1);
+          // The velocity dofs come first, so their global indices are the
+          // velocity block's.
+          TrilinosWrappers::SparsityPattern subcell_sparsity(owned_partitioning[0],
+                                                             owned_partitioning[0],
+                                                             relevant_partitioning[0],
+                                                             mpi_communicator);
+          std::vector<types::global_dof_index> cell_dofs(dofs.get_fe().n_dofs_per_cell());
+          for (const auto &cell : dofs.active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                cell->get_dof_indices(cell_dofs);
+                for (const std::vector<unsigned int> &group : groups)
+                  constraints.add_entries_local_to_global(global_indices(group, cell_dofs),
+                                                          subcell_sparsity,
+                                                          false);
+              }
+          subcell_sparsity.compress();
+          subcell_matrix.reinit(subcell_sparsity);
+        }
+    }
+
+
+    void
+    BlockPreconditioned::start_matrix()
+    {
+      system_matrix         = 0;
+      preconditioner_matrix = 0;
+      subcell_sources.clear();
+      viscosity_now.clear();
+      change_integrals[0] = change_integrals[1] = 0;
+    }
+
+
+    void
+    BlockPreconditioned::add_cell_matrix(const StokesCellMatrix &         cell,
+                                         const AffineConstraints<double> &constraints)
+    {
+      const FEValues<dim> &            fe_values = cell.fe_values;
+      const FEValuesExtractors::Scalar pressure(dim);
+      const unsigned int               dofs_per_cell = cell.dof_indices.size();
+
+      // (1/η) M_p, the Schur complement's stand-in.
+      FullMatrix<double>  cell_mass(dofs_per_cell, dofs_per_cell);
+      std::vector<double> phi_p(dofs_per_cell);
+      for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
+        {
+          for (unsigned int k = 0; k < dofs_per_cell; ++k)
+            phi_p[k] = fe_values[pressure].value(k, q);
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            for (unsigned int j = 0; j < dofs_per_cell; ++j)
+              cell_mass(i, j) += phi_p[i] * phi_p[j] / cell.viscosity[q] * fe_values.JxW(q);
+        }
+      constraints.distribute_local_to_global(cell.matrix, cell.dof_indices, system_matrix);
+      constraints.distribute_local_to_global(cell_mass, cell.dof_indices, preconditioner_matrix);
+
+      if (parameters.amg_matrix != AMGMatrix::q2)
+        {
+          subcell_sources.push_back(
+            {cell.cell,
+             cell.volume_fraction_cell,
+             std::accumulate(cell.elastic_viscosity.begin(), cell.elastic_viscosity.end(), 0.0) /
+               cell.elastic_viscosity.size()});
+          volume_fraction   = &cell.volume_fraction;
+          mass_coefficient  = cell.mass_coefficient;
+          this->constraints = &constraints;
+        }
+
+      // η at the quadrature points, for the AMG's rebuild criterion (Reuse).
+      if (parameters.reuse_preconditioner)
+        for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
+          {
+            if (velocity_amg && viscosity_now.size() < viscosity_at_build.size())
+              {
+                change_integrals[0] +=
+                  std::abs(std::log(cell.viscosity[q] /
+                                    viscosity_at_build[viscosity_now.size()])) *
+                  fe_values.JxW(q);
+                change_integrals[1] += fe_values.JxW(q);
+              }
+            viscosity_now.push_back(cell.viscosity[q]);
+          }
+    }
+
+
+    void
+    BlockPreconditioned::finish_matrix()
+    {
+      system_matrix.compress(VectorOperation::add);
+      preconditioner_matrix.compress(VectorOperation::add);
+      mass_preconditioner_is_current = false;
+      first_solve_with_matrix        = true;
+      // Keep the AMG while it still fits the new matrix (Reuse).
+      const bool compared = parameters.reuse_preconditioner && velocity_amg &&
+                            !viscosity_at_build.empty();
+      viscosity_change = 0;
+      if (compared)
+        {
+          Utilities::MPI::sum(change_integrals, mpi_communicator, change_integrals);
+          viscosity_change = change_integrals[0] / change_integrals[1];
+        }
+      if (!compared || rebuild_requested ||
+          viscosity_change > parameters.rebuild_viscosity_change)
+        {
+          preconditioner_is_current = false;
+          viscosity_at_build.swap(viscosity_now);
+        }
+    }
+
+
+    void
+    BlockPreconditioned::assemble_subcell_matrix()
+    {
+      subcell_matrix = 0;
+      if (!subcell_sources.empty())
+        {
+          SubcellAssembler subcells(dofs->get_fe().base_element(1),
+                                    subcell_sources[0].volume_fraction_cell->get_fe(),
+                                    groups);
+          for (const SubcellSource &source : subcell_sources)
+            subcells.add(source.cell,
+                         source.volume_fraction_cell,
+                         *volume_fraction,
+                         source.elastic_viscosity,
+                         mass_coefficient,
+                         model,
+                         parameters.averaging,
+                         *constraints,
+                         subcell_matrix);
+        }
+      subcell_matrix.compress(VectorOperation::add);
+    }
+
+
+    void
+    BlockPreconditioned::build_preconditioner()
+    {
+      TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
+      DoFTools::extract_constant_modes(*dofs,
+                                       dofs->get_fe().component_mask(
+                                         FEValuesExtractors::Vector(0)),
+                                       amg_data.constant_modes);
+      amg_data.elliptic              = true;
+      amg_data.higher_order_elements = (parameters.amg_matrix == AMGMatrix::q2);
+      amg_data.smoother_sweeps       = parameters.amg_smoother_sweeps;
+      amg_data.smoother_type         = parameters.amg_smoother.c_str();
+      amg_data.aggregation_threshold = parameters.amg_aggregation_threshold;
+      amg_data.w_cycle               = parameters.amg_w_cycle;
+      amg_data.n_cycles              = parameters.amg_cycles;
+      if (parameters.amg_matrix != AMGMatrix::q2)
+        assemble_subcell_matrix();
+      velocity_amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+      velocity_amg->initialize(parameters.amg_matrix == AMGMatrix::q2 ?
+                                 system_matrix.block(0, 0) :
+                                 subcell_matrix,
+                               amg_data);
+      preconditioner_is_current = true;
+      rebuild_requested         = false;
+      ++n_builds;
+    }
+
+
+    unsigned int
+    BlockPreconditioned::solve(const TrilinosWrappers::MPI::BlockVector &rhs,
+                               const TrilinosWrappers::MPI::BlockVector &guess,
+                               const AffineConstraints<double> &         constraints,
+                               TrilinosWrappers::MPI::BlockVector &      solution)
+    {
+      bool built = !preconditioner_is_current;
+      if (built)
+        build_preconditioner();
+      if (!mass_preconditioner_is_current)
+        {
+          mass_jacobi = std::make_unique<TrilinosWrappers::PreconditionJacobi>();
+          mass_jacobi->initialize(preconditioner_matrix.block(1, 1));
+          mass_preconditioner_is_current = true;
+        }
+
+      // FGMRES from `solution` with at most n_cheap cheap iterations, then
+      // (if `go_on`) expensive ones; true if it converged.
+      const double target     = parameters.tolerance * rhs.l2_norm();
+      unsigned int iterations = 0;
+      const auto   fgmres     = [&](const unsigned int n_cheap, const bool go_on) {
+        for (const bool expensive : {false, true})
+          {
+            SolverControl control(expensive ? parameters.max_iterations : n_cheap, target);
+            SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(
+              control,
+              SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(
+                parameters.krylov_basis));
+            const BlockSchurPreconditioner preconditioner(system_matrix,
+                                                          preconditioner_matrix.block(1, 1),
+                                                          *velocity_amg,
+                                                          *mass_jacobi,
+                                                          parameters,
+                                                          expensive);
+            try
+              {
+                solver.solve(system_matrix, solution, rhs, preconditioner);
+                iterations += control.last_step();
+                return true;
+              }
+            catch (const SolverControl::NoConvergence &e)
+              {
+                iterations += e.last_step;
+                if (expensive)
+                  throw ExcMessage("the Stokes solver (FGMRES) did not converge in " +
+                                   std::to_string(iterations) + " iterations: residual " +
+                                   Utilities::to_string(e.last_residual) + ", target " +
+                                   Utilities::to_string(control.tolerance()) +
+                                   " (Stokes solver/Maximum iterations = " +
+                                   std::to_string(parameters.max_iterations) + ")");
+                if (!go_on)
+                  return false;
+              }
+          }
+        return false;
+      };
+
+      if (target > 0)
+        {
+          solution = guess; // the last solution as first guess
+          constraints.set_zero(solution);
+          const unsigned int n_cheap =
+            std::min(parameters.max_iterations, parameters.cheap_iterations);
+          // A reused AMG gets twice Rebuild iteration growth × the iterations
+          // after its build; if it cannot do with those (η moved too far: it
+          // can stall altogether), it is rebuilt at once and FGMRES goes on
+          // from where it got.
+          const unsigned int reuse_limit = static_cast<unsigned int>(
+            2 * parameters.rebuild_iteration_growth * std::max(iterations_after_build, 1u));
+          if (built || !fgmres(std::min(n_cheap, reuse_limit), false))
+            {
+              if (!built)
+                {
+                  build_preconditioner();
+                  built = true;
+                }
+              // Cheap iterations first; if they stall, go on from where they
+              // got with expensive ones (ASPECT's strategy).
+              fgmres(n_cheap, true);
+            }
+        }
+      // The iteration criterion of Reuse, on like solves: the first with each
+      // new matrix (later Picard iterations start from better guesses).
+      if (first_solve_with_matrix)
+        {
+          if (built)
+            iterations_after_build = iterations;
+          else if (iterations > parameters.rebuild_iteration_growth *
+                                  std::max(iterations_after_build, 1u))
+            rebuild_requested = true;
+          first_solve_with_matrix = false;
+        }
+      return iterations;
+    }
+  } // namespace
+
+
+  std::unique_ptr<StokesLinearSolver>
+  make_block_preconditioned_solver(const StokesSolver::Parameters &parameters,
+                                   const Model &                   model)
+  {
+    return std::make_unique<BlockPreconditioned>(parameters, model);
+  }
+} // namespace viscofilm

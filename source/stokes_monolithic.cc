@@ -1,0 +1,178 @@
+// Stokes solver/Method = direct and thesis: the whole saddle-point system as
+// one matrix, factorised (Amesos KLU) or solved by the thesis' GMRES with
+// ILU(0), a baseline for benchmarks.
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/lac/affine_constraints.templates.h>
+
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <viscofilm/stokes_linear_solver.h>
+
+namespace viscofilm
+{
+  namespace
+  {
+    /// The matrix and the copies between the block vectors and one vector;
+    /// the solve itself is the derived class'.
+    class Monolithic : public StokesLinearSolver
+    {
+    public:
+      explicit Monolithic(const StokesSolver::Parameters &parameters)
+        : parameters(parameters)
+      {}
+
+      /// A factorisation needs a nonsingular matrix; so does ILU.
+      bool
+      pins_pressure() const override
+      {
+        return true;
+      }
+
+      void
+      reinit(const DoFHandler<dim> &           dofs,
+             const AffineConstraints<double> & constraints,
+             const std::vector<IndexSet> &     ,
+             const std::vector<IndexSet> &     ) override
+      {
+        owned            = dofs.locally_owned_dofs();
+        mpi_communicator = dofs.get_communicator();
+        matrix.clear();
+        TrilinosWrappers::SparsityPattern sparsity(owned,
+                                                   owned,
+                                                   DoFTools::extract_locally_relevant_dofs(dofs),
+                                                   mpi_communicator);
+        DoFTools::make_sparsity_pattern(dofs,
+                                        sparsity,
+                                        constraints,
+                                        false,
+                                        Utilities::MPI::this_mpi_process(mpi_communicator));
+        sparsity.compress();
+        matrix.reinit(sparsity);
+      }
+
+      void
+      start_matrix() override
+      {
+        matrix = 0;
+      }
+
+      void
+      add_cell_matrix(const StokesCellMatrix &         cell,
+                      const AffineConstraints<double> &constraints) override
+      {
+        constraints.distribute_local_to_global(cell.matrix, cell.dof_indices, matrix);
+      }
+
+      void
+      finish_matrix() override
+      {
+        matrix.compress(VectorOperation::add);
+      }
+
+      unsigned int
+      solve(const TrilinosWrappers::MPI::BlockVector &rhs,
+            const TrilinosWrappers::MPI::BlockVector &guess,
+            const AffineConstraints<double> &,
+            TrilinosWrappers::MPI::BlockVector &solution) override
+      {
+        TrilinosWrappers::MPI::Vector b(owned, mpi_communicator);
+        TrilinosWrappers::MPI::Vector x(owned, mpi_communicator);
+        for (const auto i : owned)
+          {
+            b(i) = rhs(i);
+            x(i) = guess(i);
+          }
+        b.compress(VectorOperation::insert);
+        x.compress(VectorOperation::insert);
+        const unsigned int iterations = solve_system(x, b);
+        for (const auto i : owned)
+          solution(i) = x(i);
+        solution.compress(VectorOperation::insert);
+        return iterations;
+      }
+
+    protected:
+      virtual unsigned int
+      solve_system(TrilinosWrappers::MPI::Vector &x, const TrilinosWrappers::MPI::Vector &b) = 0;
+
+      const StokesSolver::Parameters &parameters;
+      TrilinosWrappers::SparseMatrix  matrix;
+
+    private:
+      IndexSet owned;
+      MPI_Comm mpi_communicator = MPI_COMM_SELF;
+    };
+
+
+    /// Sparse LU (Amesos KLU): tiny meshes and debugging.
+    class Direct : public Monolithic
+    {
+    public:
+      using Monolithic::Monolithic;
+
+    protected:
+      unsigned int
+      solve_system(TrilinosWrappers::MPI::Vector &x, const TrilinosWrappers::MPI::Vector &b) override
+      {
+        SolverControl                  control(1, 0);
+        TrilinosWrappers::SolverDirect solver(control);
+        solver.solve(matrix, x, b);
+        return 0;
+      }
+    };
+
+
+    /// The thesis' solver: GMRES(100) with ILU(0) of the whole system.
+    class Thesis : public Monolithic
+    {
+    public:
+      using Monolithic::Monolithic;
+
+    protected:
+      unsigned int
+      solve_system(TrilinosWrappers::MPI::Vector &x, const TrilinosWrappers::MPI::Vector &b) override
+      {
+        // The zero pressure diagonal needs the absolute diagonal shift
+        // ilu_atol to factorise.
+        TrilinosWrappers::PreconditionILU ilu;
+        ilu.initialize(matrix, TrilinosWrappers::PreconditionILU::AdditionalData(0, 1e-8));
+        SolverControl control(parameters.max_iterations, parameters.tolerance * b.l2_norm());
+        TrilinosWrappers::SolverGMRES solver(
+          control, TrilinosWrappers::SolverGMRES::AdditionalData(false, 100));
+        try
+          {
+            solver.solve(matrix, x, b, ilu);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            throw ExcMessage("the Stokes solver (thesis: GMRES + ILU) did not "
+                             "converge in " +
+                             std::to_string(e.last_step) + " iterations: residual " +
+                             Utilities::to_string(e.last_residual) +
+                             " (Stokes solver/Maximum iterations = " +
+                             std::to_string(parameters.max_iterations) + ")");
+          }
+        return control.last_step();
+      }
+    };
+  } // namespace
+
+
+  std::unique_ptr<StokesLinearSolver>
+  make_direct_solver(const StokesSolver::Parameters &parameters)
+  {
+    return std::make_unique<Direct>(parameters);
+  }
+
+
+  std::unique_ptr<StokesLinearSolver>
+  make_thesis_solver(const StokesSolver::Parameters &parameters)
+  {
+    return std::make_unique<Thesis>(parameters);
+  }
+} // namespace viscofilm
