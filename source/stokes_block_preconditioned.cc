@@ -358,7 +358,7 @@ namespace viscofilm
       bool mass_preconditioner_is_current = false; // Jacobi of (1/η) M_p
 
       /// Reuse of the AMG: η at each owned cell's quadrature points when it
-      /// was built (empty: no AMG for this mesh) and while the matrix is
+      /// was built and while the matrix is
       /// assembled, the integrals of |ln(η/η_built)| and of 1 then, the
       /// outer iterations of the first solve after the build, whether the
       /// next solve is the first with a newly assembled matrix, and whether
@@ -405,21 +405,18 @@ namespace viscofilm
             coupling[c][d] = (c == dim && d == dim) ? DoFTools::none : DoFTools::always;
             mass_coupling[c][d] = (c == dim && d == dim) ? DoFTools::always : DoFTools::none;
           }
-      TrilinosWrappers::BlockSparsityPattern sparsity(owned_partitioning,
-                                                      owned_partitioning,
-                                                      relevant_partitioning,
-                                                      mpi_communicator);
-      DoFTools::make_sparsity_pattern(dofs, coupling, sparsity, constraints, false, rank);
-      sparsity.compress();
-      system_matrix.reinit(sparsity);
-
-      TrilinosWrappers::BlockSparsityPattern mass_sparsity(owned_partitioning,
-                                                           owned_partitioning,
-                                                           relevant_partitioning,
-                                                           mpi_communicator);
-      DoFTools::make_sparsity_pattern(dofs, mass_coupling, mass_sparsity, constraints, false, rank);
-      mass_sparsity.compress();
-      preconditioner_matrix.reinit(mass_sparsity);
+      const auto reinit = [&](const Table<2, DoFTools::Coupling> &couplings,
+                              TrilinosWrappers::BlockSparseMatrix &matrix) {
+        TrilinosWrappers::BlockSparsityPattern sparsity(owned_partitioning,
+                                                        owned_partitioning,
+                                                        relevant_partitioning,
+                                                        mpi_communicator);
+        DoFTools::make_sparsity_pattern(dofs, couplings, sparsity, constraints, false, rank);
+        sparsity.compress();
+        matrix.reinit(sparsity);
+      };
+      reinit(coupling, system_matrix);
+      reinit(mass_coupling, preconditioner_matrix);
 
       if (parameters.amg_matrix != AMGMatrix::q2)
         {
@@ -519,8 +516,9 @@ namespace viscofilm
       mass_preconditioner_is_current = false;
       first_solve_with_matrix        = true;
       // Keep the AMG while it still fits the new matrix (Reuse).
-      const bool compared = parameters.reuse_preconditioner && velocity_amg &&
-                            !viscosity_at_build.empty();
+      // A collective decision: a rank without cells has no η of its own
+      // but must join the sum.
+      const bool compared = parameters.reuse_preconditioner && velocity_amg;
       viscosity_change = 0;
       if (compared)
         {
