@@ -95,14 +95,15 @@ namespace viscofilm
       /// The block preconditioner's parts (Method = block preconditioned).
       unsigned int krylov_basis        = 100;  // FGMRES restart length
       unsigned int cheap_iterations    = 100;  // with one AMG application
-      bool         amg_w_cycle         = true;
-      unsigned int amg_cycles          = 2;
+      bool         amg_w_cycle         = false;
+      unsigned int amg_cycles          = 1;
       unsigned int amg_smoother_sweeps = 2;
       double       amg_aggregation_threshold = 0.02;
       /// ML's smoother: "Chebyshev" or "symmetric Gauss-Seidel".
       std::string  amg_smoother = "Chebyshev";
       /// The matrix ML builds the velocity block's hierarchy from.
-      AMGMatrix    amg_matrix = AMGMatrix::q2;
+      AMGMatrix    amg_matrix = dim == 2 ? AMGMatrix::q1_subcells :
+                                             AMGMatrix::q1_subcells_by_component;
       double       velocity_inner_tolerance  = 1e-2; // expensive iterations
       unsigned int velocity_inner_iterations = 1000;
       double       schur_inner_tolerance     = 1e-3;
