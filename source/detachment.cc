@@ -333,10 +333,7 @@ namespace viscofilm
           cells.push_back(nodes);
           // The seeds: biofilm on a wall.
           for (const unsigned int f : cell->face_indices())
-            if (cell->at_boundary(f) &&
-                std::any_of(loads.walls.begin(), loads.walls.end(), [&](const auto &wall) {
-                  return wall.id == cell->face(f)->boundary_id();
-                }))
+            if (cell->at_boundary(f) && loads.is_wall(cell->face(f)->boundary_id()))
               {
                 cell->face(f)->get_dof_indices(face_dofs);
                 for (const auto dof : face_dofs)

@@ -222,11 +222,6 @@ namespace viscofilm
     TotalStress<FEFaceValues<dim>> wall_stress(
       face_quadrature, model, stokes, volume_fraction, stress, update_normal_vectors);
     const double level = parameters.interface_level;
-    const auto   is_wall = [this](const types::boundary_id id) {
-      return std::any_of(parameters.walls.begin(),
-                         parameters.walls.end(),
-                         [id](const auto &wall) { return wall.id == id; });
-    };
 
     // sums: walls ∫ shear, walls length, interface ∫|σn|, interface measure,
     // detachment area; maxima: |shear| on the walls, |σn|, σ_vm
@@ -236,7 +231,7 @@ namespace viscofilm
       if (cell->is_locally_owned())
         {
           for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary() && is_wall(cell->face(f)->boundary_id()))
+            if (cell->face(f)->at_boundary() && parameters.is_wall(cell->face(f)->boundary_id()))
               {
                 wall_stress.reinit(cell, f);
                 const auto &normals = wall_stress.stokes_fe_values().get_normal_vectors();

@@ -15,6 +15,7 @@
 #include <viscofilm/dimension.h>
 #include <viscofilm/model.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -62,6 +63,14 @@ namespace viscofilm
       double interface_level = 0.05;
       /// The walls of the wall shear stress.
       std::vector<NamedBoundary> walls;
+      /// Whether boundary @p id is one of walls.
+      bool
+      is_wall(const types::boundary_id id) const
+      {
+        return std::any_of(walls.begin(), walls.end(), [id](const NamedBoundary &wall) {
+          return wall.id == id;
+        });
+      }
       /// The boundaries whose force goes into statistics.csv.
       std::vector<NamedBoundary> force_boundaries;
       ForceMethod                force_method = ForceMethod::consistent;
