@@ -19,17 +19,19 @@ namespace viscofilm
   {
     const char *type_names = "no slip|velocity|outflow|traction free|slip|pressure|periodic";
 
-    const std::map<std::string, BoundaryConditions::Type> types = {
-      {"no slip", BoundaryConditions::Type::no_slip},
-      {"velocity", BoundaryConditions::Type::velocity},
-      {"outflow", BoundaryConditions::Type::outflow},
-      {"traction free", BoundaryConditions::Type::traction_free},
-      {"slip", BoundaryConditions::Type::slip},
-      {"pressure", BoundaryConditions::Type::pressure},
-      {"periodic", BoundaryConditions::Type::periodic}};
+    template <int dim>
+    const std::map<std::string, typename BoundaryConditions<dim>::Type> types = {
+      {"no slip", BoundaryConditions<dim>::Type::no_slip},
+      {"velocity", BoundaryConditions<dim>::Type::velocity},
+      {"outflow", BoundaryConditions<dim>::Type::outflow},
+      {"traction free", BoundaryConditions<dim>::Type::traction_free},
+      {"slip", BoundaryConditions<dim>::Type::slip},
+      {"pressure", BoundaryConditions<dim>::Type::pressure},
+      {"periodic", BoundaryConditions<dim>::Type::periodic}};
 
     /// The velocity expression seen as a (dim + 1)-component (u, p)
     /// function, the layout of the Stokes element.
+    template <int dim>
     class StokesVelocity : public Function<dim>
     {
     public:
@@ -50,6 +52,7 @@ namespace viscofilm
 
     /// The translation taking periodic boundary @p first to @p second: the
     /// difference of their coarse faces' mean centres.
+    template <int dim>
     Tensor<1, dim>
     periodic_offset(const Triangulation<dim> &triangulation,
                     const types::boundary_id  first,
@@ -70,6 +73,7 @@ namespace viscofilm
     }
 
     /// The coordinate along which @p offset mostly points.
+    template <int dim>
     unsigned int
     main_direction(const Tensor<1, dim> &offset)
     {
@@ -82,13 +86,14 @@ namespace viscofilm
   } // namespace
 
 
+  template <int dim>
   void
-  BoundaryConditions::declare_parameters(
+  BoundaryConditions<dim>::declare_parameters(
     ParameterHandler &                          prm,
-    const std::vector<Geometry::NamedBoundary> &boundaries)
+    const std::vector<typename Geometry<dim>::NamedBoundary> &boundaries)
   {
     prm.enter_subsection("Boundary conditions");
-    for (const Geometry::NamedBoundary &boundary : boundaries)
+    for (const typename Geometry<dim>::NamedBoundary &boundary : boundaries)
       {
         prm.enter_subsection(boundary.name);
         // A boundary without a default Type (gmsh) accepts "" so that a
@@ -106,13 +111,13 @@ namespace viscofilm
           "identified with Periodic partner by a translation. Built-in meshes: "
           "the thesis' types (Cylinder, and in 3D Front and Back: no slip); a "
           "gmsh boundary has none and must be given one.");
-        ParsedExpression::declare(prm,
+        ParsedExpression<dim>::declare(prm,
                                   "Velocity",
                                   zero_expression(dim),
                                   "Boundary velocity \"u; v\" (3D: \"u; v; "
                                   "w\") (velocity; the tangential part for "
                                   "outflow and pressure).");
-        ParsedExpression::declare(prm,
+        ParsedExpression<dim>::declare(prm,
                                   "Pressure",
                                   "0",
                                   "P of Type = pressure: the normal traction "
@@ -129,9 +134,9 @@ namespace viscofilm
                           Patterns::Double(0, 1),
                           "φ on the parts of this boundary where the flow "
                           "enters (u·n < 0), in [0, 1]. The thesis: 0.");
-        ParsedExpression::declare(prm,
+        ParsedExpression<dim>::declare(prm,
                                   "Stress",
-                                  zero_expression(n_symmetric_components),
+                                  zero_expression(n_symmetric_components<dim>),
                                   "Elastic stress \"τxx; τxy; τyy\" (3D: "
                                   "\"τxx; τxy; τxz; τyy; τyz; τzz\") carried in "
                                   "where the flow enters (u·n < 0). 0: the "
@@ -142,10 +147,11 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  BoundaryConditions::parse_parameters(
+  BoundaryConditions<dim>::parse_parameters(
     ParameterHandler &                          prm,
-    const std::vector<Geometry::NamedBoundary> &named_boundaries)
+    const std::vector<typename Geometry<dim>::NamedBoundary> &named_boundaries)
   {
     boundaries.clear();
     boundaries.resize(named_boundaries.size());
@@ -163,7 +169,7 @@ namespace viscofilm
         check_input(!type.empty(),
                     path + "/Type is not set: choose one of " +
                       std::string(type_names));
-        boundary.type = types.at(type);
+        boundary.type = types<dim>.at(type);
         const std::string constants = prm.get("Function constants");
         boundary.velocity.parse(prm.get("Velocity"), constants, path + "/Velocity");
         boundary.pressure.parse(prm.get("Pressure"), constants, path + "/Pressure");
@@ -199,7 +205,7 @@ namespace viscofilm
       {
         velocity_fixed = velocity_fixed || boundary.type == Type::no_slip ||
                          boundary.type == Type::velocity;
-        for (const auto &[name, type] : types)
+        for (const auto &[name, type] : types<dim>)
           if (type == boundary.type)
             listing += (listing.empty() ? "" : ", ") + boundary.name + " " + name;
       }
@@ -210,8 +216,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  BoundaryConditions::constrain_velocity(const DoFHandler<dim> &    dof_handler,
+  BoundaryConditions<dim>::constrain_velocity(const DoFHandler<dim> &    dof_handler,
                                          const double               time,
                                          AffineConstraints<double> &constraints) const
   {
@@ -226,7 +233,7 @@ namespace viscofilm
           if (boundary_type != type)
             continue;
           boundary.velocity.function().set_time(time);
-          const StokesVelocity velocity(boundary.velocity.function());
+          const StokesVelocity<dim> velocity(boundary.velocity.function());
 
           if (type == Type::slip && boundary.normal_axis < 0)
             VectorTools::compute_no_normal_flux_constraints(dof_handler,
@@ -264,8 +271,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  BoundaryConditions::add_periodicity(
+  BoundaryConditions<dim>::add_periodicity(
     parallel::distributed::Triangulation<dim> &triangulation) const
   {
     std::vector<GridTools::PeriodicFacePair<
@@ -308,8 +316,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  BoundaryConditions::constrain_periodic(const DoFHandler<dim> &    dof_handler,
+  BoundaryConditions<dim>::constrain_periodic(const DoFHandler<dim> &    dof_handler,
                                          AffineConstraints<double> &constraints) const
   {
     for (const Boundary &boundary : boundaries)
@@ -317,7 +326,7 @@ namespace viscofilm
         {
           const Tensor<1, dim> offset = periodic_offset(
             dof_handler.get_triangulation(), boundary.id, boundary.periodic_partner);
-          std::vector<GridTools::PeriodicFacePair<DoFHandler<dim>::cell_iterator>> pairs;
+          std::vector<GridTools::PeriodicFacePair<typename DoFHandler<dim>::cell_iterator>> pairs;
           GridTools::collect_periodic_faces(dof_handler,
                                             boundary.id,
                                             boundary.periodic_partner,
@@ -329,8 +338,9 @@ namespace viscofilm
   }
 
 
-  const BoundaryConditions::Boundary &
-  BoundaryConditions::boundary(const types::boundary_id id) const
+  template <int dim>
+  const typename BoundaryConditions<dim>::Boundary &
+  BoundaryConditions<dim>::boundary(const types::boundary_id id) const
   {
     for (const Boundary &boundary : boundaries)
       if (boundary.id == id)
@@ -341,8 +351,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   types::boundary_id
-  BoundaryConditions::id(const std::string &name, const std::string &parameter) const
+  BoundaryConditions<dim>::id(const std::string &name, const std::string &parameter) const
   {
     std::string known;
     for (const Boundary &boundary : boundaries)
@@ -358,8 +369,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   bool
-  BoundaryConditions::fixes_pressure_level() const
+  BoundaryConditions<dim>::fixes_pressure_level() const
   {
     for (const Boundary &boundary : boundaries)
       if (boundary.type == Type::outflow || boundary.type == Type::pressure ||
@@ -367,4 +379,6 @@ namespace viscofilm
         return true;
     return false;
   }
+
+  VISCOFILM_INSTANTIATE(BoundaryConditions)
 } // namespace viscofilm

@@ -97,8 +97,9 @@ namespace viscofilm
   } // namespace
 
 
+  template <int dim>
   void
-  Checkpoint::Parameters::declare_parameters(ParameterHandler &prm)
+  Checkpoint<dim>::Parameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Checkpointing");
     prm.declare_entry("Interval",
@@ -122,8 +123,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Checkpoint::Parameters::parse_parameters(ParameterHandler &prm)
+  Checkpoint<dim>::Parameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Checkpointing");
     interval = prm.get_integer("Interval");
@@ -132,7 +134,8 @@ namespace viscofilm
   }
 
 
-  Checkpoint::Checkpoint(const Parameters & parameters,
+  template <int dim>
+  Checkpoint<dim>::Checkpoint(const Parameters & parameters,
                          const std::string &output_directory,
                          MPI_Comm           comm)
     : parameters(parameters)
@@ -141,22 +144,25 @@ namespace viscofilm
   {}
 
 
+  template <int dim>
   bool
-  Checkpoint::due(const unsigned int step) const
+  Checkpoint<dim>::due(const unsigned int step) const
   {
     return parameters.interval > 0 && step % parameters.interval == 0;
   }
 
 
+  template <int dim>
   std::string
-  Checkpoint::mesh_file() const
+  Checkpoint<dim>::mesh_file() const
   {
     return directory + "/mesh";
   }
 
 
+  template <int dim>
   std::string
-  Checkpoint::begin() const
+  Checkpoint<dim>::begin() const
   {
     const std::string staging = directory + ".new";
     on_rank_zero(mpi_communicator, [&]() {
@@ -167,8 +173,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Checkpoint::commit(const State &state, const ParameterHandler &prm) const
+  Checkpoint<dim>::commit(const State &state, const ParameterHandler &prm) const
   {
     on_rank_zero(mpi_communicator, [&]() {
       const std::string staging = directory + ".new";
@@ -197,8 +204,9 @@ namespace viscofilm
   }
 
 
-  Checkpoint::State
-  Checkpoint::read(const ParameterHandler &prm) const
+  template <int dim>
+  typename Checkpoint<dim>::State
+  Checkpoint<dim>::read(const ParameterHandler &prm) const
   {
     // Rank 0 reads; every rank gets the text (and so the same verdict).
     std::string text;
@@ -263,4 +271,7 @@ namespace viscofilm
     archive >> state.snapshots;
     return state;
   }
+
+
+  VISCOFILM_INSTANTIATE(Checkpoint)
 } // namespace viscofilm

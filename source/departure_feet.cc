@@ -23,6 +23,7 @@ namespace viscofilm
     // default of RemotePointEvaluation, so that both paths agree.
     constexpr double unit_tolerance = 1e-6;
 
+    template <int dim>
     const Mapping<dim> &
     mapping()
     {
@@ -31,7 +32,8 @@ namespace viscofilm
   } // namespace
 
 
-  PointEvaluator::PointEvaluator(
+  template <int dim>
+  PointEvaluator<dim>::PointEvaluator(
     const parallel::distributed::Triangulation<dim> &triangulation,
     const unsigned int                             max_walk_steps)
     : triangulation(triangulation)
@@ -44,14 +46,15 @@ namespace viscofilm
   {
     /// @p p in @p cell's reference coordinates, or nothing where the
     /// bilinear map has no inverse (far from a distorted cell).
+    template <int dim>
     std::optional<Point<dim>>
-    unit_point(const Triangulation<dim>::cell_iterator &cell, const Point<dim> &p)
+    unit_point(const typename Triangulation<dim>::cell_iterator &cell, const Point<dim> &p)
     {
       try
         {
-          return mapping().transform_real_to_unit_cell(cell, p);
+          return mapping<dim>().transform_real_to_unit_cell(cell, p);
         }
-      catch (const Mapping<dim>::ExcTransformationFailed &)
+      catch (const typename Mapping<dim>::ExcTransformationFailed &)
         {
           return std::nullopt;
         }
@@ -59,8 +62,9 @@ namespace viscofilm
   } // namespace
 
 
-  PointEvaluator::Trace
-  PointEvaluator::trace(Triangulation<dim>::active_cell_iterator cell,
+  template <int dim>
+  typename PointEvaluator<dim>::Trace
+  PointEvaluator<dim>::trace(typename Triangulation<dim>::active_cell_iterator cell,
                         const Point<dim> &                       from,
                         const Point<dim> &                       to) const
   {
@@ -117,9 +121,9 @@ namespace viscofilm
         Point<dim> unit_exit = unit_a + exit * (unit_b - unit_a);
         unit_exit[face / 2]  = face % 2;
         unit_exit = GeometryInfo<dim>::project_to_unit_cell(unit_exit);
-        const Point<dim> crossing = mapping().transform_unit_to_real_cell(cell, unit_exit);
+        const Point<dim> crossing = mapping<dim>().transform_unit_to_real_cell(cell, unit_exit);
 
-        Triangulation<dim>::cell_iterator next;
+        typename Triangulation<dim>::cell_iterator next;
         if (cell->has_periodic_neighbor(face))
           {
             // Continue on the partner side, shifted by the period (face
@@ -167,10 +171,11 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  PointEvaluator::reinit(const std::vector<Point<dim>> &                         origins,
+  PointEvaluator<dim>::reinit(const std::vector<Point<dim>> &                         origins,
                          const std::vector<Point<dim>> &                         points,
-                         std::vector<Triangulation<dim>::active_cell_iterator> &hints)
+                         std::vector<typename Triangulation<dim>::active_cell_iterator> &hints)
   {
     AssertDimension(points.size(), hints.size());
     AssertDimension(points.size(), origins.size());
@@ -204,21 +209,23 @@ namespace viscofilm
         std::vector<Point<dim>> remote_locations;
         for (const unsigned int i : remote_points)
           remote_locations.push_back(located[i]);
-        remote.reinit(remote_locations, triangulation, mapping());
+        remote.reinit(remote_locations, triangulation, mapping<dim>());
       }
   }
 
 
+  template <int dim>
   const std::vector<Point<dim>> &
-  PointEvaluator::located_points() const
+  PointEvaluator<dim>::located_points() const
   {
     return located;
   }
 
 
+  template <int dim>
   template <int n>
   std::vector<std::array<double, n>>
-  PointEvaluator::evaluate(const CellEvaluation<n> &evaluate_cell) const
+  PointEvaluator<dim>::evaluate(const CellEvaluation<dim, n> &evaluate_cell) const
   {
     using Value = std::array<double, n>;
     std::vector<Value>    result(n_points, Value{});
@@ -247,7 +254,7 @@ namespace viscofilm
           const typename Utilities::MPI::RemotePointEvaluation<dim>::CellData &data) {
         for (unsigned int c = 0; c < data.cells.size(); ++c)
           {
-            const Triangulation<dim>::active_cell_iterator cell(&triangulation,
+            const typename Triangulation<dim>::active_cell_iterator cell(&triangulation,
                                                               data.cells[c].first,
                                                               data.cells[c].second);
             const unsigned int begin = data.reference_point_ptrs[c];
@@ -273,39 +280,29 @@ namespace viscofilm
     return result;
   }
 
-  template std::vector<std::array<double, 1>>
-  PointEvaluator::evaluate<1>(const CellEvaluation<1> &) const;
-  template std::vector<std::array<double, 3>>
-  PointEvaluator::evaluate<3>(const CellEvaluation<3> &) const;
-  // c and the evaluating rank (ElasticStress); u and ∇u.
-  template std::vector<std::array<double, n_symmetric_components + 1>>
-  PointEvaluator::evaluate<n_symmetric_components + 1>(
-    const CellEvaluation<n_symmetric_components + 1> &) const;
-  template std::vector<std::array<double, n_velocity_values>>
-  PointEvaluator::evaluate<n_velocity_values>(const CellEvaluation<n_velocity_values> &) const;
-
-
+  template <int dim>
   unsigned int
-  PointEvaluator::n_remote_points() const
+  PointEvaluator<dim>::n_remote_points() const
   {
     return remote_points.size();
   }
 
 
-  std::vector<std::array<double, n_velocity_values>>
-  evaluate_velocity(const PointEvaluator &                    points,
+  template <int dim>
+  std::vector<std::array<double, n_velocity_values<dim>>>
+  evaluate_velocity(const PointEvaluator<dim> &                    points,
                     const DoFHandler<dim> &                     stokes_dofs,
                     const TrilinosWrappers::MPI::BlockVector &stokes_solution)
   {
-    FEPointEvaluation<dim, dim> velocity(mapping(),
+    FEPointEvaluation<dim, dim> velocity(mapping<dim>(),
                                      stokes_dofs.get_fe(),
                                      update_values | update_gradients,
                                      0);
     std::vector<double> dof_values(stokes_dofs.get_fe().n_dofs_per_cell());
-    return points.evaluate<n_velocity_values>(
-      [&](const Triangulation<dim>::active_cell_iterator &cell,
+    return points.template evaluate<n_velocity_values<dim>>(
+      [&](const typename Triangulation<dim>::active_cell_iterator &cell,
           const ArrayView<const Point<dim>> &             unit_points,
-          const ArrayView<std::array<double, n_velocity_values>> & values) {
+          const ArrayView<std::array<double, n_velocity_values<dim>>> & values) {
         cell_of(stokes_dofs, cell)->get_dof_values(stokes_solution, dof_values.begin(), dof_values.end());
         velocity.reinit(cell, unit_points);
         velocity.evaluate(dof_values,
@@ -325,8 +322,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  DepartureFeet::Parameters::declare_parameters(ParameterHandler &prm)
+  DepartureFeet<dim>::Parameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Departure feet");
     prm.declare_entry("Newton tolerance",
@@ -354,8 +352,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  DepartureFeet::Parameters::parse_parameters(ParameterHandler &prm)
+  DepartureFeet<dim>::Parameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Departure feet");
     newton_tolerance      = prm.get_double("Newton tolerance");
@@ -367,7 +366,8 @@ namespace viscofilm
   }
 
 
-  DepartureFeet::DepartureFeet(
+  template <int dim>
+  DepartureFeet<dim>::DepartureFeet(
     const Parameters &                             parameters,
     const parallel::distributed::Triangulation<dim> &triangulation)
     : parameters(parameters)
@@ -376,8 +376,9 @@ namespace viscofilm
   {}
 
 
+  template <int dim>
   bool
-  DepartureFeet::inside_patch(const Triangulation<dim>::active_cell_iterator &cell,
+  DepartureFeet<dim>::inside_patch(const typename Triangulation<dim>::active_cell_iterator &cell,
                               const Point<dim> &                              x,
                               const Point<dim> &                              y) const
   {
@@ -403,10 +404,11 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   std::vector<Point<dim>>
-  DepartureFeet::compute(
+  DepartureFeet<dim>::compute(
     const std::vector<Point<dim>> &                              points,
-    const std::vector<Triangulation<dim>::active_cell_iterator> &cells,
+    const std::vector<typename Triangulation<dim>::active_cell_iterator> &cells,
     const DoFHandler<dim> &                                      stokes_dofs,
     const TrilinosWrappers::MPI::BlockVector &                   stokes_solution,
     const double                                                 time_step)
@@ -419,8 +421,8 @@ namespace viscofilm
     // The iterates y, unwrapped across periodic faces (the segment x–y is
     // the characteristic); a foot cut at the boundary stops there.
     std::vector<Point<dim>>                             feet(points);
-    std::vector<PointEvaluator::Trace>                  cuts(points.size());
-    std::vector<Triangulation<dim>::active_cell_iterator> hints;
+    std::vector<typename PointEvaluator<dim>::Trace>                  cuts(points.size());
+    std::vector<typename Triangulation<dim>::active_cell_iterator> hints;
     std::vector<unsigned int>                           active(points.size());
     for (unsigned int i = 0; i < points.size(); ++i)
       active[i] = i;
@@ -484,7 +486,7 @@ namespace viscofilm
               continue;
             feet[i] = feet[i] - invert(jacobian) * G;
             // Does the characteristic enter through the boundary?
-            const PointEvaluator::Trace cut = evaluator.trace(cells[i], points[i], feet[i]);
+            const typename PointEvaluator<dim>::Trace cut = evaluator.trace(cells[i], points[i], feet[i]);
             if (cut.found && cut.cut_face != numbers::invalid_unsigned_int &&
                 cut.point.distance(feet[i]) > tolerance)
               {
@@ -500,14 +502,14 @@ namespace viscofilm
 
     // Walk to each foot from its point's own cell: a foot on that cell's
     // boundary (a stagnant node's) takes that cell's values (upwind).
-    std::vector<Triangulation<dim>::active_cell_iterator> own_cells(cells);
+    std::vector<typename Triangulation<dim>::active_cell_iterator> own_cells(cells);
     evaluator.reinit(points, feet, own_cells);
 
     // Inflow where u·n < 0 at the cut, relative to the velocity scale as
     // VolumeFraction's inflow faces (inflow_threshold).
     max_speed = Utilities::MPI::max(max_speed, comm);
     inflow.assign(points.size(), numbers::invalid_boundary_id);
-    FEPointEvaluation<dim, dim> velocity(mapping(),
+    FEPointEvaluation<dim, dim> velocity(mapping<dim>(),
                                          stokes_dofs.get_fe(),
                                          update_values | update_gradients,
                                          0);
@@ -541,30 +543,58 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   const std::vector<types::boundary_id> &
-  DepartureFeet::inflow_boundaries() const
+  DepartureFeet<dim>::inflow_boundaries() const
   {
     return inflow;
   }
 
 
-  const PointEvaluator &
-  DepartureFeet::at_feet() const
+  template <int dim>
+  const PointEvaluator<dim> &
+  DepartureFeet<dim>::at_feet() const
   {
     return evaluator;
   }
 
 
-  const DepartureFeet::Statistics &
-  DepartureFeet::statistics() const
+  template <int dim>
+  const typename DepartureFeet<dim>::Statistics &
+  DepartureFeet<dim>::statistics() const
   {
     return accumulated;
   }
 
 
+  template <int dim>
   void
-  DepartureFeet::reset_statistics()
+  DepartureFeet<dim>::reset_statistics()
   {
     accumulated = Statistics();
   }
+
+
+  VISCOFILM_INSTANTIATE(PointEvaluator)
+  VISCOFILM_INSTANTIATE(DepartureFeet)
+
+  // PointEvaluator::evaluate for φ (1), VolumeFraction's feet (3),
+  // ElasticStress' c and the evaluating rank, and u and ∇u.
+#define INSTANTIATE(dim)                                                        \
+  template std::vector<std::array<double, 1>>                                  \
+  PointEvaluator<dim>::evaluate<1>(const CellEvaluation<dim, 1> &) const;      \
+  template std::vector<std::array<double, 3>>                                  \
+  PointEvaluator<dim>::evaluate<3>(const CellEvaluation<dim, 3> &) const;      \
+  template std::vector<std::array<double, n_symmetric_components<dim> + 1>>    \
+  PointEvaluator<dim>::evaluate<n_symmetric_components<dim> + 1>(              \
+    const CellEvaluation<dim, n_symmetric_components<dim> + 1> &) const;       \
+  template std::vector<std::array<double, n_velocity_values<dim>>>             \
+  PointEvaluator<dim>::evaluate<n_velocity_values<dim>>(                       \
+    const CellEvaluation<dim, n_velocity_values<dim>> &) const;                \
+  template std::vector<std::array<double, n_velocity_values<dim>>>             \
+  evaluate_velocity<dim>(const PointEvaluator<dim> &,                          \
+                         const DoFHandler<dim> &,                              \
+                         const TrilinosWrappers::MPI::BlockVector &);
+  VISCOFILM_FOR_EACH_DIM(INSTANTIATE)
+#undef INSTANTIATE
 } // namespace viscofilm

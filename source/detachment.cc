@@ -17,8 +17,9 @@
 
 namespace viscofilm
 {
+  template <int dim>
   void
-  Detachment::Parameters::declare_parameters(ParameterHandler &prm)
+  Detachment<dim>::Parameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Detachment");
     prm.declare_entry("Release",
@@ -61,9 +62,10 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Detachment::Parameters::parse_parameters(ParameterHandler &              prm,
-                                           const BiofilmLoads::Parameters &loads)
+  Detachment<dim>::Parameters::parse_parameters(ParameterHandler &              prm,
+                                           const typename BiofilmLoads<dim>::Parameters &loads)
   {
     prm.enter_subsection("Detachment");
     enabled   = prm.get_bool("Release");
@@ -80,15 +82,16 @@ namespace viscofilm
   }
 
 
-  Detachment::Detachment(const Parameters &                             parameters,
-                         const BiofilmLoads::Parameters &               loads,
+  template <int dim>
+  Detachment<dim>::Detachment(const Parameters &                             parameters,
+                         const typename BiofilmLoads<dim>::Parameters &               loads,
                          const Model &                                  model,
                          const parallel::distributed::Triangulation<dim> &triangulation,
-                         const VolumeFraction::Parameters &             transport,
-                         const BoundaryConditions &                     boundary_conditions,
-                         const StokesSolver &                           stokes,
-                         VolumeFraction &                               volume_fraction,
-                         const ElasticStress &                          stress)
+                         const typename VolumeFraction<dim>::Parameters &             transport,
+                         const BoundaryConditions<dim> &                     boundary_conditions,
+                         const StokesSolver<dim> &                           stokes,
+                         VolumeFraction<dim> &                               volume_fraction,
+                         const ElasticStress<dim> &                          stress)
     : parameters(parameters)
     , loads(loads)
     , model(model)
@@ -100,8 +103,9 @@ namespace viscofilm
   {}
 
 
+  template <int dim>
   void
-  Detachment::setup_dofs()
+  Detachment<dim>::setup_dofs()
   {
     if (!parameters.enabled)
       return;
@@ -110,8 +114,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Detachment::setup_clock()
+  Detachment<dim>::setup_clock()
   {
     if (parameters.duration == 0)
       return;
@@ -122,8 +127,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   TrilinosWrappers::MPI::Vector
-  Detachment::nodal_load() const
+  Detachment<dim>::nodal_load() const
   {
     const DoFHandler<dim> &dofs  = volume_fraction.dof_handler();
     const IndexSet         owned = dofs.locally_owned_dofs();
@@ -174,8 +180,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Detachment::release(DepartureFeet &feet, const double time_step, const unsigned int order)
+  Detachment<dim>::release(DepartureFeet<dim> &feet, const double time_step, const unsigned int order)
   {
     step_mass         = 0;
     connectivity_mass = 0;
@@ -267,8 +274,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Detachment::release_by_strength(const double                   time_step,
+  Detachment<dim>::release_by_strength(const double                   time_step,
                                   TrilinosWrappers::MPI::Vector &phi,
                                   std::vector<bool> &            released)
   {
@@ -296,8 +304,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Detachment::release_unattached(const TrilinosWrappers::MPI::Vector &ghosted_phi,
+  Detachment<dim>::release_unattached(const TrilinosWrappers::MPI::Vector &ghosted_phi,
                                  TrilinosWrappers::MPI::Vector &      phi,
                                  std::vector<bool> &                  released)
   {
@@ -419,8 +428,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Detachment::record(const TrilinosWrappers::MPI::Vector &released,
+  Detachment<dim>::record(const TrilinosWrappers::MPI::Vector &released,
                      const std::vector<Point<dim>> &      released_nodes)
   {
     const DoFHandler<dim> &dofs = volume_fraction.dof_handler();
@@ -475,8 +485,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Detachment::add_statistics(CsvFile &statistics) const
+  Detachment<dim>::add_statistics(CsvFile &statistics) const
   {
     if (!parameters.enabled)
       return;
@@ -495,30 +506,34 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Detachment::add_output(DataOut<dim> &data_out) const
+  Detachment<dim>::add_output(DataOut<dim> &data_out) const
   {
     if (parameters.enabled)
       detached.add_output(data_out);
   }
 
 
-  Detachment::Totals
-  Detachment::totals() const
+  template <int dim>
+  typename Detachment<dim>::Totals
+  Detachment<dim>::totals() const
   {
     return total;
   }
 
 
+  template <int dim>
   void
-  Detachment::set_totals(const Totals &totals)
+  Detachment<dim>::set_totals(const Totals &totals)
   {
     total = totals;
   }
 
 
+  template <int dim>
   void
-  Detachment::prepare_for_refinement()
+  Detachment<dim>::prepare_for_refinement()
   {
     if (!parameters.enabled)
       return;
@@ -528,8 +543,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Detachment::finish_refinement()
+  Detachment<dim>::finish_refinement()
   {
     if (!parameters.enabled)
       return;
@@ -546,8 +562,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Detachment::prepare_for_checkpoint()
+  Detachment<dim>::prepare_for_checkpoint()
   {
     if (!parameters.enabled)
       return;
@@ -557,10 +574,14 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Detachment::checkpoint_written()
+  Detachment<dim>::checkpoint_written()
   {
     carrier.release();
     detached.checkpoint_written();
   }
+
+
+  VISCOFILM_INSTANTIATE(Detachment)
 } // namespace viscofilm

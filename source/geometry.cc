@@ -24,6 +24,7 @@ namespace viscofilm
 
     /// The cylinder's surface: a circle about the centre in 2D, a cylinder
     /// along z through it in 3D.
+    template <int dim>
     std::unique_ptr<Manifold<dim>>
     cylinder_manifold(const Point<dim> &centre)
     {
@@ -36,6 +37,7 @@ namespace viscofilm
 
     /// The distance from the cylinder's axis to the nearest side of the
     /// channel, in the plane (x, y) across the axis.
+    template <int dim>
     double
     distance_to_nearest_side(const Point<dim> &centre,
                              const Point<dim> &lower_left,
@@ -49,13 +51,14 @@ namespace viscofilm
     }
 
     /// What a boundary of a gmsh mesh is, and gmsh's name for its group.
-    const std::string boundary_entity =
-      (dim == 2 ? "boundary lines" : "boundary faces");
-    const std::string physical_group =
-      (dim == 2 ? "Physical Curve" : "Physical Surface");
+    template <int dim>
+    const std::string boundary_entity = (dim == 2 ? "boundary lines" : "boundary faces");
+    template <int dim>
+    const std::string physical_group = (dim == 2 ? "Physical Curve" : "Physical Surface");
 
     /// Physical names of the (dim − 1)-dimensional groups in a gmsh file's
     /// $PhysicalNames section, by tag (deal.II's GridIn skips the section).
+    template <int dim>
     std::map<types::boundary_id, std::string>
     read_physical_names(const std::string &filename)
     {
@@ -86,8 +89,9 @@ namespace viscofilm
   } // namespace
 
 
+  template <int dim>
   void
-  Geometry::declare_parameters(ParameterHandler &prm)
+  Geometry<dim>::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
     prm.declare_entry("Dimension",
@@ -152,23 +156,24 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Geometry::parse_parameters(ParameterHandler &prm, const std::string &directory)
+  Geometry<dim>::parse_parameters(ParameterHandler &prm, const std::string &directory)
   {
     prm.enter_subsection("Geometry");
-    // main() runs the program built for the Dimension asked for.
+    // main() runs Problem<Dimension>.
     AssertThrow(prm.get_integer("Dimension") == dim, ExcInternalError());
     const std::string mesh_name = prm.get("Mesh");
     mesh = (mesh_name == "channel" ? Mesh::channel :
             mesh_name == "gmsh"    ? Mesh::gmsh :
                                      Mesh::channel_with_cylinder);
     lower_left =
-      parse_point(prm.get("Lower left corner"), "Geometry/Lower left corner");
+      parse_point<dim>(prm.get("Lower left corner"), "Geometry/Lower left corner");
     upper_right =
-      parse_point(prm.get("Upper right corner"), "Geometry/Upper right corner");
+      parse_point<dim>(prm.get("Upper right corner"), "Geometry/Upper right corner");
     initial_refinement = prm.get_integer("Initial global refinement");
     cylinder_centre =
-      parse_point(prm.get("Cylinder centre"), "Geometry/Cylinder centre");
+      parse_point<dim>(prm.get("Cylinder centre"), "Geometry/Cylinder centre");
     cylinder_radius = prm.get_double("Cylinder radius");
     mesh_file       = prm.get("Mesh file");
     prm.leave_subsection();
@@ -242,10 +247,10 @@ namespace viscofilm
       {
         check_input(axes.count(0) == 0,
                     "Geometry/Mesh file \"" + mesh_file + "\": some " +
-                      boundary_entity + " belong to no physical group; put "
-                      "every one in one (gmsh: " + physical_group + "), its "
+                      boundary_entity<dim> + " belong to no physical group; put "
+                      "every one in one (gmsh: " + physical_group<dim> + "), its "
                       "name is what Boundary conditions calls it");
-        names = read_physical_names(mesh_file);
+        names = read_physical_names<dim>(mesh_file);
       }
     else
       names = {{BoundaryId::inlet, "Inlet"},
@@ -295,8 +300,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   std::vector<unsigned int>
-  Geometry::coarse_repetitions() const
+  Geometry<dim>::coarse_repetitions() const
   {
     const Tensor<1, dim> extent = upper_right - lower_left;
     double               edge   = extent[0];
@@ -309,8 +315,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Geometry::make_coarse_grid(Triangulation<dim> &triangulation) const
+  Geometry<dim>::make_coarse_grid(Triangulation<dim> &triangulation) const
   {
     if (mesh == Mesh::channel)
       {
@@ -385,19 +392,24 @@ namespace viscofilm
   }
 
 
-  const std::vector<Geometry::NamedBoundary> &
-  Geometry::boundaries() const
+  template <int dim>
+  const std::vector<typename Geometry<dim>::NamedBoundary> &
+  Geometry<dim>::boundaries() const
   {
     return named_boundaries;
   }
 
 
+  template <int dim>
   double
-  Geometry::initial_cell_size() const
+  Geometry<dim>::initial_cell_size() const
   {
     const double coarse_edge =
       (mesh == Mesh::channel ? (upper_right - lower_left)[0] / coarse_repetitions()[0] :
                                smallest_coarse_edge);
     return coarse_edge / std::pow(2.0, initial_refinement);
   }
+
+
+  VISCOFILM_INSTANTIATE(Geometry)
 } // namespace viscofilm

@@ -367,8 +367,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  BiofilmImage::declare_parameters(ParameterHandler &prm)
+  BiofilmImage<dim>::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Image");
     prm.declare_entry("File",
@@ -421,8 +422,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  BiofilmImage::parse_parameters(ParameterHandler &      prm,
+  BiofilmImage<dim>::parse_parameters(ParameterHandler &      prm,
                                  const std::string &     directory,
                                  const BoundingBox<dim> &domain)
   {
@@ -459,7 +461,7 @@ namespace viscofilm
                   pixel_text + "\"");
     for (unsigned int d = 0; d < dim; ++d)
       pixel_size[d] = sizes[sizes.size() == 1 ? 0 : d];
-    origin = parse_point(origin_text, section + "Origin");
+    origin = parse_point<dim>(origin_text, section + "Origin");
     const Point<2> range = parse_point<2>(range_text, section + "Intensity range");
     intensity_range      = {{range[0], range[1]}};
     check_input(map == Map::threshold || range[0] != range[1],
@@ -541,8 +543,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   double
-  BiofilmImage::phi_of_intensity(const double intensity) const
+  BiofilmImage<dim>::phi_of_intensity(const double intensity) const
   {
     if (map == Map::threshold)
       return intensity > threshold ? biofilm_phi : 0.;
@@ -552,21 +555,24 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   double
-  BiofilmImage::smallest_pixel() const
+  BiofilmImage<dim>::smallest_pixel() const
   {
     return *std::min_element(pixel_size.begin(), pixel_size.end());
   }
 
 
+  template <int dim>
   const Function<dim> &
-  BiofilmImage::volume_fraction() const
+  BiofilmImage<dim>::volume_fraction() const
   {
     Assert(phi, ExcMessage("BiofilmImage::parse_parameters() first"));
     return *phi;
   }
 
 
+  VISCOFILM_INSTANTIATE(BiofilmImage)
   template class ImageVolumeFraction<2>;
   template class ImageVolumeFraction<3>;
   template Table<2, double>

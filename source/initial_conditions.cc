@@ -2,8 +2,9 @@
 
 namespace viscofilm
 {
+  template <int dim>
   const std::map<std::string, std::string> &
-  InitialConditions::presets()
+  InitialConditions<dim>::presets()
   {
     // On the unit square, centred on x = 0.5 at the bottom wall y = 0. The
     // thesis does not give its shapes; these follow its figures 4.1 and 4.4.
@@ -23,14 +24,15 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  InitialConditions::declare_parameters(ParameterHandler &prm)
+  InitialConditions<dim>::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Initial conditions");
     std::string names;
     for (const auto &preset : presets())
       names += (names.empty() ? "" : ", ") + preset.first;
-    ParsedExpression::declare(prm,
+    ParsedExpression<dim>::declare(prm,
                               "Volume fraction",
                               "0",
                               "Biofilm volume fraction φ at t = 0, in [0, 1] (the "
@@ -38,9 +40,9 @@ namespace viscofilm
                               "of the named profiles " + names +
                                 " (doc/parameters.md), or image: φ from the "
                                 "subsection Image (doc/images.md).");
-    ParsedExpression::declare(prm,
+    ParsedExpression<dim>::declare(prm,
                               "Stress",
-                              zero_expression(n_symmetric_components),
+                              zero_expression(n_symmetric_components<dim>),
                               "Elastic stress \"τ_xx; τ_xy; τ_yy\" (3D: \"τ_xx; "
                               "τ_xy; τ_xz; τ_yy; τ_yz; τ_zz\") at t = 0 (the "
                               "thesis: 0).");
@@ -54,13 +56,14 @@ namespace viscofilm
                       "0.03125",
                       Patterns::Double(0),
                       "Time step of the softening, > 0. The thesis: Δx = 1/32.");
-    BiofilmImage::declare_parameters(prm);
+    BiofilmImage<dim>::declare_parameters(prm);
     prm.leave_subsection();
   }
 
 
+  template <int dim>
   void
-  InitialConditions::parse_parameters(ParameterHandler &      prm,
+  InitialConditions<dim>::parse_parameters(ParameterHandler &      prm,
                                       const std::string &     directory,
                                       const BoundingBox<dim> &domain)
   {
@@ -85,18 +88,22 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   double
-  InitialConditions::input_resolution() const
+  InitialConditions<dim>::input_resolution() const
   {
     return from_image ? image.smallest_pixel() : 0.;
   }
 
 
+  template <int dim>
   const Function<dim> &
-  InitialConditions::initial_volume_fraction() const
+  InitialConditions<dim>::initial_volume_fraction() const
   {
     if (from_image)
       return image.volume_fraction();
     return volume_fraction.function();
   }
+
+  VISCOFILM_INSTANTIATE(InitialConditions)
 } // namespace viscofilm

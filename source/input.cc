@@ -45,16 +45,16 @@ namespace viscofilm
   }
 
 
-  template <int n>
-  Point<n>
+  template <int dim>
+  Point<dim>
   parse_point(const std::string &text, const std::string &parameter)
   {
-    const std::string form = n == 2 ? "\"x, y\"" : "\"x, y, z\"";
+    const std::string form = dim == 2 ? "\"x, y\"" : "\"x, y, z\"";
     const std::vector<std::string> parts = Utilities::split_string_list(text, ',');
-    check_input(parts.size() == n,
+    check_input(parts.size() == dim,
                 parameter + " must be a point " + form + ", got \"" + text + "\"");
-    Point<n> p;
-    for (unsigned int d = 0; d < n; ++d)
+    Point<dim> p;
+    for (unsigned int d = 0; d < dim; ++d)
       {
         try
           {
@@ -63,26 +63,21 @@ namespace viscofilm
         catch (...)
           {
             check_input(false,
-                        parameter + " must be a point " + form + " of " + std::to_string(n) +
+                        parameter + " must be a point " + form + " of " + std::to_string(dim) +
                           " numbers, got \"" + text + "\"");
           }
       }
     return p;
   }
 
-  template Point<2>
-  parse_point<2>(const std::string &, const std::string &);
-  template Point<3>
-  parse_point<3>(const std::string &, const std::string &);
-
-
+  template <int dim>
   std::vector<Point<dim>>
   parse_point_list(const std::string &text, const std::string &parameter)
   {
     std::vector<Point<dim>> points;
     for (const std::string &item : Utilities::split_string_list(text, ';'))
       if (!item.empty())
-        points.push_back(parse_point(item, parameter));
+        points.push_back(parse_point<dim>(item, parameter));
     return points;
   }
 
@@ -108,13 +103,15 @@ namespace viscofilm
   }
 
 
-  ParsedExpression::ParsedExpression(const unsigned int n_components)
+  template <int dim>
+  ParsedExpression<dim>::ParsedExpression(const unsigned int n_components)
     : n_components(n_components)
   {}
 
 
+  template <int dim>
   void
-  ParsedExpression::declare(ParameterHandler & prm,
+  ParsedExpression<dim>::declare(ParameterHandler & prm,
                             const std::string &name,
                             const std::string &default_expression,
                             const std::string &documentation)
@@ -130,8 +127,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  ParsedExpression::parse(const std::string &text,
+  ParsedExpression<dim>::parse(const std::string &text,
                           const std::string &constants_text,
                           const std::string &parameter)
   {
@@ -200,17 +198,28 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   FunctionParser<dim> &
-  ParsedExpression::function() const
+  ParsedExpression<dim>::function() const
   {
     Assert(parser, ExcInternalError());
     return *parser;
   }
 
 
+  template <int dim>
   const std::string &
-  ParsedExpression::text() const
+  ParsedExpression<dim>::text() const
   {
     return expression;
   }
+
+
+  VISCOFILM_INSTANTIATE(ParsedExpression)
+#define INSTANTIATE(dim)                                                     \
+  template Point<dim> parse_point<dim>(const std::string &, const std::string &); \
+  template std::vector<Point<dim>> parse_point_list<dim>(const std::string &,     \
+                                                         const std::string &);
+  VISCOFILM_FOR_EACH_DIM(INSTANTIATE)
+#undef INSTANTIATE
 } // namespace viscofilm

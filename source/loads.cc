@@ -26,6 +26,7 @@ namespace viscofilm
     /// The tangential part of the traction @p force_density on a wall with
     /// outward normal @p normal: in 2D signed along the tangent n rotated by
     /// +90° (along +x on the bottom wall, where it is σ_xy), in 3D its length.
+    template <int dim>
     double
     wall_shear(const Tensor<1, dim> &force_density, const Tensor<1, dim> &normal)
     {
@@ -37,13 +38,14 @@ namespace viscofilm
 
 
     /// σ_xy and σ_vm at the points DataOut evaluates (2 subdivisions).
+    template <int dim>
     class LoadsPostprocessor : public DataPostprocessor<dim>
     {
     public:
       LoadsPostprocessor(const Model &         model,
-                         const StokesSolver &  stokes,
-                         const VolumeFraction &volume_fraction,
-                         const ElasticStress & stress)
+                         const StokesSolver<dim> &  stokes,
+                         const VolumeFraction<dim> &volume_fraction,
+                         const ElasticStress<dim> & stress)
         : points(QTrapezoid<1>(), 2)
         , model(model)
         , stokes(stokes)
@@ -84,9 +86,9 @@ namespace viscofilm
       // DataOut's points for build_patches(2), in its order.
       const QIterated<dim>    points;
       const Model &         model;
-      const StokesSolver &  stokes;
-      const VolumeFraction &volume_fraction;
-      const ElasticStress & stress;
+      const StokesSolver<dim> &  stokes;
+      const VolumeFraction<dim> &volume_fraction;
+      const ElasticStress<dim> & stress;
     };
   } // namespace
 
@@ -95,12 +97,13 @@ namespace viscofilm
   {
     /// The boundaries named in the comma-separated list @p names, each
     /// resolved with @p boundary_conditions (an unknown name names @p parameter).
-    std::vector<BiofilmLoads::Parameters::NamedBoundary>
+    template <int dim>
+    std::vector<typename BiofilmLoads<dim>::Parameters::NamedBoundary>
     named_boundaries(const std::string &       names,
                      const std::string &       parameter,
-                     const BoundaryConditions &boundary_conditions)
+                     const BoundaryConditions<dim> &boundary_conditions)
     {
-      std::vector<BiofilmLoads::Parameters::NamedBoundary> boundaries;
+      std::vector<typename BiofilmLoads<dim>::Parameters::NamedBoundary> boundaries;
       for (const std::string &name : Utilities::split_string_list(names))
         {
           for (const auto &boundary : boundaries)
@@ -113,8 +116,9 @@ namespace viscofilm
   } // namespace
 
 
+  template <int dim>
   void
-  BiofilmLoads::Parameters::declare_parameters(ParameterHandler &prm)
+  BiofilmLoads<dim>::Parameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Detachment");
     prm.declare_entry("Stress threshold",
@@ -167,10 +171,11 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  BiofilmLoads::Parameters::parse_parameters(
+  BiofilmLoads<dim>::Parameters::parse_parameters(
     ParameterHandler &        prm,
-    const BoundaryConditions &boundary_conditions)
+    const BoundaryConditions<dim> &boundary_conditions)
   {
     prm.enter_subsection("Detachment");
     stress_threshold = prm.get_double("Stress threshold");
@@ -178,7 +183,7 @@ namespace viscofilm
     const bool has_bottom =
       std::any_of(boundary_conditions.boundaries.begin(),
                   boundary_conditions.boundaries.end(),
-                  [](const BoundaryConditions::Boundary &b) { return b.name == "Bottom"; });
+                  [](const typename BoundaryConditions<dim>::Boundary &b) { return b.name == "Bottom"; });
     const std::string wall_names = prm.get("Walls");
     walls = (wall_names == "Bottom" && !has_bottom) ?
               std::vector<NamedBoundary>() :
@@ -198,23 +203,25 @@ namespace viscofilm
   }
 
 
-  BiofilmLoads::BiofilmLoads(const Parameters &    parameters,
+  template <int dim>
+  BiofilmLoads<dim>::BiofilmLoads(const Parameters &    parameters,
                              const Model &         model,
-                             const StokesSolver &  stokes,
-                             const VolumeFraction &volume_fraction,
-                             const ElasticStress & stress)
+                             const StokesSolver<dim> &  stokes,
+                             const VolumeFraction<dim> &volume_fraction,
+                             const ElasticStress<dim> & stress)
     : parameters(parameters)
     , model(model)
     , stokes(stokes)
     , volume_fraction(volume_fraction)
     , stress(stress)
     , postprocessor(
-        std::make_unique<LoadsPostprocessor>(model, stokes, volume_fraction, stress))
+        std::make_unique<LoadsPostprocessor<dim>>(model, stokes, volume_fraction, stress))
   {}
 
 
+  template <int dim>
   void
-  BiofilmLoads::add_statistics(CsvFile &statistics) const
+  BiofilmLoads<dim>::add_statistics(CsvFile &statistics) const
   {
     const QGauss<dim> quadrature(3);
     const QGauss<dim - 1> face_quadrature(3);
@@ -292,8 +299,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   std::vector<Tensor<1, dim>>
-  BiofilmLoads::boundary_forces() const
+  BiofilmLoads<dim>::boundary_forces() const
   {
     if (parameters.force_boundaries.empty())
       return {};
@@ -307,10 +315,11 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   std::vector<Tensor<1, dim>>
-  BiofilmLoads::surface_integral_forces() const
+  BiofilmLoads<dim>::surface_integral_forces() const
   {
-    const std::vector<Parameters::NamedBoundary> &boundaries =
+    const std::vector<typename Parameters::NamedBoundary> &boundaries =
       parameters.force_boundaries;
     std::vector<Tensor<1, dim>> forces(boundaries.size());
     const DoFHandler<dim> &dofs = stokes.dof_handler();
@@ -336,10 +345,11 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   std::vector<Tensor<1, dim>>
-  BiofilmLoads::consistent_forces() const
+  BiofilmLoads<dim>::consistent_forces() const
   {
-    const std::vector<Parameters::NamedBoundary> &boundaries =
+    const std::vector<typename Parameters::NamedBoundary> &boundaries =
       parameters.force_boundaries;
     std::vector<Tensor<1, dim>> forces(boundaries.size());
     const DoFHandler<dim> &dofs = stokes.dof_handler();
@@ -442,9 +452,13 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  BiofilmLoads::add_output(DataOut<dim> &data_out)
+  BiofilmLoads<dim>::add_output(DataOut<dim> &data_out)
   {
     data_out.add_data_vector(stokes.dof_handler(), stokes.solution(), *postprocessor);
   }
+
+
+  VISCOFILM_INSTANTIATE(BiofilmLoads)
 } // namespace viscofilm

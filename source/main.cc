@@ -6,8 +6,6 @@
 #include <viscofilm/parameters.h>
 #include <viscofilm/problem.h>
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -96,14 +94,15 @@ namespace
   /// Declare every parameter in @p prm for the mesh that @p geometry_input
   /// (Geometry's entries) describes: Boundary conditions has a subsection for
   /// each of its boundaries.
+  template <int dim>
   void
   declare_for_mesh(dealii::ParameterHandler &prm,
                    dealii::ParameterHandler &geometry_input,
-                   viscofilm::Geometry &     geometry,
+                   viscofilm::Geometry<dim> &geometry,
                    const std::string &       directory)
   {
     geometry.parse_parameters(geometry_input, directory);
-    viscofilm::Parameters::declare_parameters(prm, geometry.boundaries());
+    viscofilm::Parameters<dim>::declare_parameters(prm, geometry.boundaries());
   }
 
 
@@ -111,10 +110,11 @@ namespace
   /// that names the file, the line and the parameter. Two passes: the first
   /// reads Geometry alone and learns the mesh's boundaries, which declares
   /// Boundary conditions/<name>; the second reads everything strictly.
+  template <int dim>
   void
-  read_parameters(const std::string &     filename,
-                  dealii::ParameterHandler &prm,
-                  viscofilm::Parameters &  parameters)
+  read_parameters(const std::string &         filename,
+                  dealii::ParameterHandler &  prm,
+                  viscofilm::Parameters<dim> &parameters)
   {
     viscofilm::check_input(std::filesystem::is_regular_file(filename),
                            "parameter file \"" + filename + "\" does not exist");
@@ -124,7 +124,7 @@ namespace
                              "\" must have the extension .prm");
     const std::string directory = std::filesystem::path(filename).parent_path().string();
     dealii::ParameterHandler geometry_input;
-    viscofilm::Geometry::declare_parameters(geometry_input);
+    viscofilm::Geometry<dim>::declare_parameters(geometry_input);
     std::vector<std::pair<std::string, std::string>> boundary_names;
     parse_with_includes(geometry_input, filename, true, &boundary_names);
     declare_for_mesh(prm, geometry_input, parameters.geometry, directory);
@@ -148,46 +148,73 @@ namespace
   }
 
 
-  /// Geometry/Dimension of @p filename, or 0 where it cannot be read (the
-  /// run then says why).
+  /// Geometry/Dimension of @p filename (Geometry's entries alone, whose
+  /// declarations are the same in 2D and 3D but for defaults), or 2 where it
+  /// cannot be read: the 2D run's read of the file then says why.
   int
   requested_dimension(const std::string &filename)
   {
     try
       {
         dealii::ParameterHandler geometry_input;
-        viscofilm::Geometry::declare_parameters(geometry_input);
+        viscofilm::Geometry<2>::declare_parameters(geometry_input);
         parse_with_includes(geometry_input, filename, true);
         geometry_input.enter_subsection("Geometry");
         return geometry_input.get_integer("Dimension");
       }
     catch (...)
       {
-        return 0;
+        return 2;
       }
   }
 
 
-  /// The program is built once per space dimension: viscofilm (2D) and
-  /// viscofilm-3d, side by side. A parameter file asking for the other
-  /// dimension is handed to the other program, before MPI starts (every rank
-  /// does the same). Returns only if there is nothing to hand over.
-  void
-  run_in_requested_dimension(char *argv[], const std::vector<std::string> &args)
+  /// Read @p filename and, unless @p validate_only, run it in dim
+  /// dimensions; the exit code.
+  template <int dim>
+  int
+  run(const std::string &filename, const bool validate_only)
   {
-    if (args.empty() || args.back().rfind("-", 0) == 0)
-      return;
-    const int requested = requested_dimension(args.back());
-    if (requested == 0 || requested == viscofilm::dim)
-      return;
-    const std::filesystem::path program =
-      std::filesystem::read_symlink("/proc/self/exe").parent_path() /
-      (requested == 2 ? "viscofilm" : "viscofilm-3d");
-    execv(program.c_str(), argv);
-    std::cerr << "viscofilm: error in the input: Geometry/Dimension = " << requested
-              << " needs the program " << program.string()
-              << ", which could not be started (build it with cmake --build)" << std::endl;
-    std::exit(1);
+    using namespace viscofilm;
+    const bool is_root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    const auto fail    = [is_root](const std::string &what, const std::string &message) {
+      if (is_root)
+        std::cerr << "viscofilm: " << what << ": " << message << std::endl;
+      return 1;
+    };
+
+    ParameterHandler prm;
+    Parameters<dim>  parameters;
+    try
+      {
+        read_parameters(filename, prm, parameters);
+      }
+    catch (const std::exception &e)
+      {
+        return fail("error in the input", error_message(e));
+      }
+
+    if (validate_only)
+      {
+        if (is_root)
+          std::cout << filename << ": valid" << std::endl;
+        return 0;
+      }
+
+    try
+      {
+        Problem<dim> problem(parameters, prm, MPI_COMM_WORLD);
+        problem.run();
+      }
+    catch (const ExcInput &e)
+      {
+        return fail("error in the input", error_message(e));
+      }
+    catch (const std::exception &e)
+      {
+        return fail("run stopped", error_message(e));
+      }
+    return 0;
   }
 } // namespace
 
@@ -196,16 +223,9 @@ int
 main(int argc, char *argv[])
 {
   using namespace viscofilm;
-  run_in_requested_dimension(argv, std::vector<std::string>(argv + 1, argv + argc));
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const bool is_root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   const std::vector<std::string> args(argv + 1, argv + argc);
-
-  const auto fail = [is_root](const std::string &what, const std::string &message) {
-    if (is_root)
-      std::cerr << "viscofilm: " << what << ": " << message << std::endl;
-    return 1;
-  };
 
   if (args.size() == 1 && (args[0] == "--help" || args[0] == "-h"))
     {
@@ -214,15 +234,14 @@ main(int argc, char *argv[])
       return 0;
     }
 
-  ParameterHandler prm;
-  Parameters       parameters;
-
   if (args.size() == 1 && args[0] == "--print-parameters")
     {
-      // The default mesh's (the channel's) boundaries.
+      // The 2D defaults, and the default mesh's (the channel's) boundaries.
+      ParameterHandler prm;
       ParameterHandler geometry_input;
-      Geometry::declare_parameters(geometry_input);
-      declare_for_mesh(prm, geometry_input, parameters.geometry, "");
+      Geometry<2>      geometry;
+      Geometry<2>::declare_parameters(geometry_input);
+      declare_for_mesh(prm, geometry_input, geometry, "");
       if (is_root)
         prm.print_parameters(std::cout, ParameterHandler::PRM);
       return 0;
@@ -236,35 +255,6 @@ main(int argc, char *argv[])
       return 2;
     }
   const std::string filename = args.back();
-
-  try
-    {
-      read_parameters(filename, prm, parameters);
-    }
-  catch (const std::exception &e)
-    {
-      return fail("error in the input", error_message(e));
-    }
-
-  if (validate_only)
-    {
-      if (is_root)
-        std::cout << filename << ": valid" << std::endl;
-      return 0;
-    }
-
-  try
-    {
-      Problem problem(parameters, prm, MPI_COMM_WORLD);
-      problem.run();
-    }
-  catch (const ExcInput &e)
-    {
-      return fail("error in the input", error_message(e));
-    }
-  catch (const std::exception &e)
-    {
-      return fail("run stopped", error_message(e));
-    }
-  return 0;
+  return requested_dimension(filename) == 3 ? run<3>(filename, validate_only) :
+                                              run<2>(filename, validate_only);
 }

@@ -13,8 +13,9 @@
 
 namespace viscofilm
 {
+  template <int dim>
   void
-  MeshRefinement::declare_parameters(ParameterHandler &prm)
+  MeshRefinement<dim>::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Mesh refinement");
     prm.declare_entry("Adaptive",
@@ -62,8 +63,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  MeshRefinement::parse_parameters(ParameterHandler &prm,
+  MeshRefinement<dim>::parse_parameters(ParameterHandler &prm,
                                    const unsigned int initial_level)
   {
     prm.enter_subsection("Mesh refinement");
@@ -99,10 +101,11 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   bool
-  MeshRefinement::flag_cells(parallel::distributed::Triangulation<dim> &triangulation,
-                             const VolumeFraction &volume_fraction,
-                             const StokesSolver &  stokes,
+  MeshRefinement<dim>::flag_cells(parallel::distributed::Triangulation<dim> &triangulation,
+                             const VolumeFraction<dim> &volume_fraction,
+                             const StokesSolver<dim> &  stokes,
                              const bool            coarsen,
                              const InitialInput *  input) const
   {
@@ -159,4 +162,6 @@ namespace viscofilm
         }
     return Utilities::MPI::sum(n_flagged, triangulation.get_communicator()) > 0;
   }
+
+  VISCOFILM_INSTANTIATE(MeshRefinement)
 } // namespace viscofilm

@@ -315,6 +315,7 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   SymmetricTensor<2, dim>
   Model::stress(const SymmetricTensor<2, dim> &conformation,
                 const double                   volume_fraction) const
@@ -338,6 +339,7 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   SymmetricTensor<2, dim>
   Model::conformation(const SymmetricTensor<2, dim> &stress,
                       const double                   volume_fraction) const
@@ -369,6 +371,7 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   double
   Model::elastic_viscosity(const double                   volume_fraction,
                            const double                   k,
@@ -436,4 +439,16 @@ namespace viscofilm
           << (rheology == Rheology::phases ? "phases" : "thesis mixture")
           << " (doc/parameters.md, \"Units\")" << std::endl;
   }
+
+
+#define INSTANTIATE(dim)                                                         \
+  template SymmetricTensor<2, dim> Model::stress(const SymmetricTensor<2, dim> &, \
+                                                 const double) const;            \
+  template SymmetricTensor<2, dim> Model::conformation(                           \
+    const SymmetricTensor<2, dim> &, const double) const;                         \
+  template double Model::elastic_viscosity(const double,                          \
+                                           const double,                          \
+                                           const SymmetricTensor<2, dim> &) const;
+  VISCOFILM_FOR_EACH_DIM(INSTANTIATE)
+#undef INSTANTIATE
 } // namespace viscofilm

@@ -87,8 +87,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Output::Parameters::declare_parameters(ParameterHandler &prm)
+  Output<dim>::Parameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
     prm.declare_entry("Directory",
@@ -113,20 +114,22 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Output::Parameters::parse_parameters(ParameterHandler &prm)
+  Output<dim>::Parameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
     directory = prm.get("Directory");
     interval  = prm.get_integer("Interval");
     probe_points =
-      parse_point_list(prm.get("Probe points"), "Output/Probe points");
+      parse_point_list<dim>(prm.get("Probe points"), "Output/Probe points");
     prm.leave_subsection();
     check_input(!directory.empty(), "Output/Directory must not be empty");
   }
 
 
-  Output::Output(const Parameters &                             parameters,
+  template <int dim>
+  Output<dim>::Output(const Parameters &                             parameters,
                  const parallel::distributed::Triangulation<dim> &triangulation)
     : parameters(parameters)
     , triangulation(triangulation)
@@ -134,8 +137,9 @@ namespace viscofilm
   {}
 
 
+  template <int dim>
   void
-  Output::prepare(const ParameterHandler &           prm,
+  Output<dim>::prepare(const ParameterHandler &           prm,
                   const std::optional<unsigned int> &resume_after_step,
                   const std::vector<XDMFEntry> &     snapshots)
   {
@@ -168,23 +172,26 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Output::mesh_changed()
+  Output<dim>::mesh_changed()
   {
     probe_cache_is_current = false;
   }
 
 
+  template <int dim>
   bool
-  Output::snapshot_due(const unsigned int step, const bool last_step) const
+  Output<dim>::snapshot_due(const unsigned int step, const bool last_step) const
   {
     return parameters.interval > 0 &&
            (step % parameters.interval == 0 || last_step);
   }
 
 
+  template <int dim>
   void
-  Output::write_snapshot(const unsigned int                             step,
+  Output<dim>::write_snapshot(const unsigned int                             step,
                          const double                                   time,
                          const std::function<void(DataOut<dim> &)> &add_fields)
   {
@@ -232,12 +239,13 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Output::write_probes(const unsigned int    step,
+  Output<dim>::write_probes(const unsigned int    step,
                        const double          time,
-                       const StokesSolver &  stokes,
-                       const VolumeFraction &volume_fraction,
-                       const ElasticStress & stress)
+                       const StokesSolver<dim> &  stokes,
+                       const VolumeFraction<dim> &volume_fraction,
+                       const ElasticStress<dim> & stress)
   {
     if (!probes_file)
       return;
@@ -266,7 +274,7 @@ namespace viscofilm
     const auto phi = VectorTools::point_values<1>(probe_cache,
                                                   volume_fraction.dof_handler(),
                                                   volume_fraction.solution());
-    const auto c = VectorTools::point_values<n_symmetric_components>(
+    const auto c = VectorTools::point_values<n_symmetric_components<dim>>(
       probe_cache, stress.dof_handler(), stress.solution());
     for (unsigned int i = 0; i < up.size(); ++i)
       {
@@ -280,23 +288,28 @@ namespace viscofilm
         probes_file->set("volume_fraction", phi[i]);
         const SymmetricTensor<2, dim> tau =
           stress.stress_of(Vector<double>(c[i].begin_raw(), c[i].end_raw()), phi[i]);
-        for (unsigned int k = 0; k < n_symmetric_components; ++k)
-          probes_file->set("tau_" + symmetric_component_name(k), stored_component(tau, k));
+        for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
+          probes_file->set("tau_" + symmetric_component_name<dim>(k), stored_component(tau, k));
         probes_file->write_row();
       }
   }
 
 
+  template <int dim>
   const std::vector<XDMFEntry> &
-  Output::snapshots() const
+  Output<dim>::snapshots() const
   {
     return xdmf_entries;
   }
 
 
+  template <int dim>
   CsvFile &
-  Output::statistics()
+  Output<dim>::statistics()
   {
     return *statistics_file;
   }
+
+
+  VISCOFILM_INSTANTIATE(Output)
 } // namespace viscofilm

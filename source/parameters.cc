@@ -2,30 +2,32 @@
 
 namespace viscofilm
 {
+  template <int dim>
   void
-  Parameters::declare_parameters(ParameterHandler &                          prm,
-                                 const std::vector<Geometry::NamedBoundary> &boundaries)
+  Parameters<dim>::declare_parameters(ParameterHandler &                          prm,
+                                 const std::vector<typename Geometry<dim>::NamedBoundary> &boundaries)
   {
-    Geometry::declare_parameters(prm);
-    MeshRefinement::declare_parameters(prm);
+    Geometry<dim>::declare_parameters(prm);
+    MeshRefinement<dim>::declare_parameters(prm);
     TimeStepping::declare_parameters(prm);
     Model::declare_parameters(prm);
-    BoundaryConditions::declare_parameters(prm, boundaries);
-    InitialConditions::declare_parameters(prm);
-    StokesSolver::Parameters::declare_parameters(prm);
-    ElasticStress::Parameters::declare_parameters(prm);
-    DepartureFeet::Parameters::declare_parameters(prm);
-    VolumeFraction::Parameters::declare_parameters(prm);
-    BiofilmLoads::Parameters::declare_parameters(prm);
-    Detachment::Parameters::declare_parameters(prm);
-    Output::Parameters::declare_parameters(prm);
-    Verification::declare_parameters(prm);
-    Checkpoint::Parameters::declare_parameters(prm);
+    BoundaryConditions<dim>::declare_parameters(prm, boundaries);
+    InitialConditions<dim>::declare_parameters(prm);
+    StokesSolver<dim>::Parameters::declare_parameters(prm);
+    ElasticStress<dim>::Parameters::declare_parameters(prm);
+    DepartureFeet<dim>::Parameters::declare_parameters(prm);
+    VolumeFraction<dim>::Parameters::declare_parameters(prm);
+    BiofilmLoads<dim>::Parameters::declare_parameters(prm);
+    Detachment<dim>::Parameters::declare_parameters(prm);
+    Output<dim>::Parameters::declare_parameters(prm);
+    Verification<dim>::declare_parameters(prm);
+    Checkpoint<dim>::Parameters::declare_parameters(prm);
   }
 
 
+  template <int dim>
   void
-  Parameters::parse_parameters(ParameterHandler &prm, const std::string &directory)
+  Parameters<dim>::parse_parameters(ParameterHandler &prm, const std::string &directory)
   {
     geometry.parse_parameters(prm, directory);
     mesh_refinement.parse_parameters(prm, geometry.initial_refinement);
@@ -45,4 +47,7 @@ namespace viscofilm
     checkpointing.parse_parameters(prm);
 
   }
+
+
+  VISCOFILM_INSTANTIATE(Parameters)
 } // namespace viscofilm

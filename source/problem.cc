@@ -13,7 +13,8 @@
 
 namespace viscofilm
 {
-  Problem::Problem(Parameters &parameters, const ParameterHandler &prm, MPI_Comm comm)
+  template <int dim>
+  Problem<dim>::Problem(Parameters<dim> &parameters, const ParameterHandler &prm, MPI_Comm comm)
     : parameters(parameters)
     , prm(prm)
     , mpi_communicator(comm)
@@ -59,8 +60,9 @@ namespace viscofilm
   {}
 
 
+  template <int dim>
   void
-  Problem::make_grid()
+  Problem<dim>::make_grid()
   {
     TimerOutput::Scope t(*computing_timer, "setup");
     make_coarse_grid();
@@ -69,16 +71,18 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Problem::make_coarse_grid()
+  Problem<dim>::make_coarse_grid()
   {
     parameters.geometry.make_coarse_grid(triangulation);
     parameters.boundary_conditions.add_periodicity(triangulation);
   }
 
 
+  template <int dim>
   void
-  Problem::check_probe_points() const
+  Problem<dim>::check_probe_points() const
   {
     for (const Point<dim> &p : parameters.output.probe_points)
       {
@@ -99,8 +103,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Problem::setup_dofs()
+  Problem<dim>::setup_dofs()
   {
     TimerOutput::Scope t(*computing_timer, "setup");
     stokes.setup_dofs();
@@ -118,8 +123,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   bool
-  Problem::refine_mesh(const bool coarsen, const MeshRefinement::InitialInput *input)
+  Problem<dim>::refine_mesh(const bool coarsen, const typename MeshRefinement<dim>::InitialInput *input)
   {
     TimerOutput::Scope t(*computing_timer, "refine mesh");
     if (!parameters.mesh_refinement.flag_cells(triangulation,
@@ -143,8 +149,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Problem::mesh_changed()
+  Problem<dim>::mesh_changed()
   {
     output.mesh_changed();
     // The edge of the smallest (square or cubic) cell: its diameter / √dim.
@@ -152,8 +159,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Problem::write_checkpoint(const unsigned int step, const double time)
+  Problem<dim>::write_checkpoint(const unsigned int step, const double time)
   {
     TimerOutput::Scope t(*computing_timer, "checkpoint");
     const std::string mesh_file = checkpoint.begin();
@@ -176,10 +184,11 @@ namespace viscofilm
   }
 
 
-  Checkpoint::State
-  Problem::resume_from_checkpoint()
+  template <int dim>
+  typename Checkpoint<dim>::State
+  Problem<dim>::resume_from_checkpoint()
   {
-    const Checkpoint::State state = checkpoint.read(prm);
+    const typename Checkpoint<dim>::State state = checkpoint.read(prm);
     {
       TimerOutput::Scope t(*computing_timer, "setup");
       make_coarse_grid();
@@ -201,8 +210,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Problem::set_initial_conditions()
+  Problem<dim>::set_initial_conditions()
   {
     // u = 0, p = 0 are the solver's initial state; φ from the input,
     // softened (eq. 2.50); τ = 0. An adaptive mesh must resolve both the
@@ -215,7 +225,7 @@ namespace viscofilm
       parameters.initial_conditions.initial_volume_fraction();
     // An image has detail between φ's nodes: refine on its pixels too.
     const double resolution = parameters.initial_conditions.input_resolution();
-    const MeshRefinement::InitialInput input{initial_phi, resolution};
+    const typename MeshRefinement<dim>::InitialInput input{initial_phi, resolution};
     const bool adaptive = parameters.mesh_refinement.adaptive;
     for (bool softened = false; !softened;)
       {
@@ -256,16 +266,17 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   unsigned int
-  Problem::solve_stokes(const double time)
+  Problem<dim>::solve_stokes(const double time)
   {
-    StokesSolver::Coefficients coefficients{
+    typename StokesSolver<dim>::Coefficients coefficients{
       time,
       time_step,
       &volume_fraction.dof_handler(),
       &volume_fraction.solution(),
       &parameters.verification.body_force.function(),
-      [this](const DoFHandler<dim>::active_cell_iterator &cell,
+      [this](const typename DoFHandler<dim>::active_cell_iterator &cell,
              const std::vector<double> &                phi,
              std::vector<SymmetricTensor<2, dim>> &       tau) {
         stress.stress_at_quadrature_points(cell, phi, tau);
@@ -283,8 +294,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   unsigned int
-  Problem::advance_volume_fraction(const double k)
+  Problem<dim>::advance_volume_fraction(const double k)
   {
     TimerOutput::Scope t(*computing_timer, "volume fraction");
     return volume_fraction.advance(stokes,
@@ -296,8 +308,9 @@ namespace viscofilm
   }
 
 
-  Problem::StepReport
-  Problem::do_time_step(const double time)
+  template <int dim>
+  typename Problem<dim>::StepReport
+  Problem<dim>::do_time_step(const double time)
   {
     const double k = time_step;
     StepReport   report;
@@ -374,8 +387,9 @@ namespace viscofilm
   }
 
 
-  Problem::StepReport
-  Problem::take_step(const double time)
+  template <int dim>
+  typename Problem<dim>::StepReport
+  Problem<dim>::take_step(const double time)
   {
     const TimeStepping &stepping = parameters.time_stepping;
     // The step's CFL number is that of u^n, which the feet follow.
@@ -417,8 +431,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Problem::write_statistics(const unsigned int step,
+  Problem<dim>::write_statistics(const unsigned int step,
                             const double       time,
                             const StepReport & report)
   {
@@ -463,7 +478,7 @@ namespace viscofilm
     loads.add_statistics(statistics);
     detachment.add_statistics(statistics);
     statistics.set("min_conformation_eigenvalue", stress.min_eigenvalue());
-    const DepartureFeet::Statistics &feet = departure_feet.statistics();
+    const typename DepartureFeet<dim>::Statistics &feet = departure_feet.statistics();
     statistics.set("feet_newton_iterations", feet.max_newton_iterations);
     statistics.set("feet_left_cell", feet.n_left_cell);
     statistics.set("feet_left_domain", feet.n_left_domain);
@@ -474,8 +489,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Problem::output_results(const unsigned int step,
+  Problem<dim>::output_results(const unsigned int step,
                           const double       time,
                           const bool         last_step)
   {
@@ -492,8 +508,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Problem::run()
+  Problem<dim>::run()
   {
     try
       {
@@ -507,8 +524,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Problem::run_time_loop()
+  Problem<dim>::run_time_loop()
   {
     parameters.model.print(pcout);
     const double end_time =
@@ -517,7 +535,7 @@ namespace viscofilm
     double       time       = 0;
     if (parameters.checkpointing.resume)
       {
-        const Checkpoint::State state = resume_from_checkpoint();
+        const typename Checkpoint<dim>::State state = resume_from_checkpoint();
         first_step                    = state.step + 1;
         time                          = state.time;
       }
@@ -590,4 +608,7 @@ namespace viscofilm
           << Utilities::MPI::sum(memory.VmHWM, mpi_communicator) / 1024.0
           << " MiB in all" << std::endl;
   }
+
+
+  VISCOFILM_INSTANTIATE(Problem)
 } // namespace viscofilm

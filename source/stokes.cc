@@ -24,18 +24,20 @@ namespace viscofilm
 {
   namespace
   {
+    template <int dim>
     std::unique_ptr<FiniteElement<dim>>
-    pressure_element(const StokesSolver::PressureElement element)
+    pressure_element(const typename StokesSolver<dim>::PressureElement element)
     {
-      if (element == StokesSolver::PressureElement::discontinuous)
+      if (element == StokesSolver<dim>::PressureElement::discontinuous)
         return std::make_unique<FE_DGP<dim>>(1);
       return std::make_unique<FE_Q<dim>>(1);
     }
   } // namespace
 
 
+  template <int dim>
   void
-  StokesSolver::Parameters::declare_parameters(ParameterHandler &prm)
+  StokesSolver<dim>::Parameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Stokes solver");
     prm.declare_entry("Method",
@@ -194,8 +196,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  StokesSolver::Parameters::parse_parameters(ParameterHandler &prm)
+  StokesSolver<dim>::Parameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Stokes solver");
     const std::string name = prm.get("Method");
@@ -245,29 +248,32 @@ namespace viscofilm
   }
 
 
-  StokesSolver::StokesSolver(
+  template <int dim>
+  StokesSolver<dim>::StokesSolver(
     const parallel::distributed::Triangulation<dim> &triangulation,
     const Parameters &                             parameters,
     const Model &                                  model,
-    const BoundaryConditions &                     boundary_conditions,
+    const BoundaryConditions<dim> &                     boundary_conditions,
     const unsigned int                             order)
     : triangulation(triangulation)
     , parameters(parameters)
     , model(model)
     , boundary_conditions(boundary_conditions)
     , mpi_communicator(triangulation.get_communicator())
-    , fe(FE_Q<dim>(2), dim, *pressure_element(parameters.pressure_element), 1)
+    , fe(FE_Q<dim>(2), dim, *pressure_element<dim>(parameters.pressure_element), 1)
     , dofs(triangulation)
     , order(order)
-    , linear_solver(StokesLinearSolver::create(parameters, model))
+    , linear_solver(StokesLinearSolver<dim>::create(parameters, model))
   {}
 
 
-  StokesSolver::~StokesSolver() = default;
+  template <int dim>
+  StokesSolver<dim>::~StokesSolver() = default;
 
 
+  template <int dim>
   void
-  StokesSolver::setup_dofs()
+  StokesSolver<dim>::setup_dofs()
   {
     dofs.distribute_dofs(fe);
     // Block 0: the dim velocity components; block 1: the pressure.
@@ -297,8 +303,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  StokesSolver::make_constraints(const double time)
+  StokesSolver<dim>::make_constraints(const double time)
   {
     constraints.clear();
     constraints.reinit(locally_relevant_dofs);
@@ -326,15 +333,17 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  StokesSolver::invalidate_matrix()
+  StokesSolver<dim>::invalidate_matrix()
   {
     matrix_is_current = false;
   }
 
 
+  template <int dim>
   TrilinosWrappers::MPI::BlockVector
-  StokesSolver::extrapolated_solution(const double offset) const
+  StokesSolver<dim>::extrapolated_solution(const double offset) const
   {
     TrilinosWrappers::MPI::BlockVector velocity = old_solution;
     if (previous_step > 0)
@@ -354,8 +363,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   unsigned int
-  StokesSolver::solve()
+  StokesSolver<dim>::solve()
   {
     TrilinosWrappers::MPI::BlockVector distributed(owned_partitioning,
                                                    mpi_communicator);
@@ -370,8 +380,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  StokesSolver::normalize_pressure(TrilinosWrappers::MPI::BlockVector &distributed)
+  StokesSolver<dim>::normalize_pressure(TrilinosWrappers::MPI::BlockVector &distributed)
   {
     if (boundary_conditions.fixes_pressure_level())
       return;
@@ -392,8 +403,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  StokesSolver::prepare_for_refinement()
+  StokesSolver<dim>::prepare_for_refinement()
   {
     carrier.prepare(dofs, current_solution);
     if (order == 2)
@@ -401,8 +413,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  StokesSolver::finish_refinement()
+  StokesSolver<dim>::finish_refinement()
   {
     setup_dofs();
     TrilinosWrappers::MPI::BlockVector distributed(owned_partitioning,
@@ -418,8 +431,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  StokesSolver::prepare_for_checkpoint()
+  StokesSolver<dim>::prepare_for_checkpoint()
   {
     carrier.prepare_checkpoint(dofs, current_solution);
     if (order == 2)
@@ -427,16 +441,18 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  StokesSolver::checkpoint_written()
+  StokesSolver<dim>::checkpoint_written()
   {
     carrier.release();
     previous_carrier.release();
   }
 
 
+  template <int dim>
   void
-  StokesSolver::advance_time()
+  StokesSolver<dim>::advance_time()
   {
     if (order == 2)
       {
@@ -447,72 +463,85 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   const TrilinosWrappers::MPI::BlockVector &
-  StokesSolver::previous_solution() const
+  StokesSolver<dim>::previous_solution() const
   {
     return older_solution;
   }
 
 
+  template <int dim>
   double
-  StokesSolver::previous_time_step() const
+  StokesSolver<dim>::previous_time_step() const
   {
     return previous_step;
   }
 
 
+  template <int dim>
   const TrilinosWrappers::MPI::BlockVector &
-  StokesSolver::start_of_step_solution() const
+  StokesSolver<dim>::start_of_step_solution() const
   {
     return old_solution;
   }
 
 
+  template <int dim>
   void
-  StokesSolver::set_previous_time_step(const double time_step)
+  StokesSolver<dim>::set_previous_time_step(const double time_step)
   {
     previous_step = time_step;
   }
 
 
+  template <int dim>
   void
-  StokesSolver::restore_old()
+  StokesSolver<dim>::restore_old()
   {
     current_solution = old_solution;
   }
 
 
+  template <int dim>
   const DoFHandler<dim> &
-  StokesSolver::dof_handler() const
+  StokesSolver<dim>::dof_handler() const
   {
     return dofs;
   }
 
 
+  template <int dim>
   const TrilinosWrappers::MPI::BlockVector &
-  StokesSolver::solution() const
+  StokesSolver<dim>::solution() const
   {
     return current_solution;
   }
 
 
+  template <int dim>
   types::global_dof_index
-  StokesSolver::n_dofs() const
+  StokesSolver<dim>::n_dofs() const
   {
     return dofs.n_dofs();
   }
 
 
+  template <int dim>
   unsigned int
-  StokesSolver::n_preconditioner_builds() const
+  StokesSolver<dim>::n_preconditioner_builds() const
   {
     return linear_solver->n_preconditioner_builds();
   }
 
 
+  template <int dim>
   double
-  StokesSolver::viscosity_change_since_build() const
+  StokesSolver<dim>::viscosity_change_since_build() const
   {
     return linear_solver->viscosity_change_since_build();
   }
+
+
+  VISCOFILM_INSTANTIATE(StokesSolver)
 } // namespace viscofilm

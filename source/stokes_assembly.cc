@@ -19,8 +19,9 @@
 
 namespace viscofilm
 {
+  template <int dim>
   void
-  StokesSolver::average_viscosity(const Averaging            averaging,
+  StokesSolver<dim>::average_viscosity(const Averaging            averaging,
                                   const std::vector<double> &JxW,
                                   std::vector<double> &      viscosity)
   {
@@ -50,8 +51,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  StokesSolver::assemble(const Coefficients &coefficients)
+  StokesSolver<dim>::assemble(const Coefficients &coefficients)
   {
     make_constraints(coefficients.time);
 
@@ -223,7 +225,7 @@ namespace viscofilm
           for (const auto &face : cell->face_iterators())
             if (face->at_boundary() &&
                 boundary_conditions.boundary(face->boundary_id()).type ==
-                  BoundaryConditions::Type::pressure)
+                  BoundaryConditions<dim>::Type::pressure)
               {
                 const Function<dim> &pressure =
                   boundary_conditions.boundary(face->boundary_id()).pressure.function();
@@ -271,15 +273,17 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   Quadrature<dim>
-  StokesSolver::quadrature() const
+  StokesSolver<dim>::quadrature() const
   {
     return QGauss<dim>(fe.degree + 1);
   }
 
 
+  template <int dim>
   void
-  StokesSolver::trace_back(DepartureFeet &feet, const double time_step)
+  StokesSolver<dim>::trace_back(DepartureFeet<dim> &feet, const double time_step)
   {
     step_length = time_step;
     old_velocity_at_feet.clear();
@@ -288,7 +292,7 @@ namespace viscofilm
       return;
     FEValues<dim> fe_values(fe, quadrature(), update_quadrature_points);
     std::vector<Point<dim>>                               points;
-    std::vector<Triangulation<dim>::active_cell_iterator> cells;
+    std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -323,4 +327,7 @@ namespace viscofilm
     if (order == 2 && previous_step > 0)
       at_feet(time_step + previous_step, older_solution, previous_velocity_at_feet);
   }
+
+
+  VISCOFILM_INSTANTIATE(StokesSolver)
 } // namespace viscofilm

@@ -38,6 +38,7 @@ namespace viscofilm
      * cases such as hanging nodes at large viscosity contrasts). FGMRES
      * tolerates that the inner CG solves make it vary from call to call.
      */
+    template <int dim>
     class BlockSchurPreconditioner : public Subscriptor
     {
     public:
@@ -46,7 +47,7 @@ namespace viscofilm
         const TrilinosWrappers::SparseMatrix &     weighted_mass,
         const TrilinosWrappers::PreconditionAMG &  velocity_amg,
         const TrilinosWrappers::PreconditionJacobi &mass_jacobi,
-        const StokesSolver::Parameters &            parameters,
+        const typename StokesSolver<dim>::Parameters &            parameters,
         const bool                                  expensive)
         : system_matrix(system_matrix)
         , weighted_mass(weighted_mass)
@@ -96,7 +97,7 @@ namespace viscofilm
       const TrilinosWrappers::SparseMatrix &      weighted_mass;
       const TrilinosWrappers::PreconditionAMG &   velocity_amg;
       const TrilinosWrappers::PreconditionJacobi &mass_jacobi;
-      const StokesSolver::Parameters &            parameters;
+      const typename StokesSolver<dim>::Parameters &            parameters;
       const bool                                  expensive;
     };
 
@@ -123,6 +124,7 @@ namespace viscofilm
      * sub-cell matrix shares the Q2 DoFHandler): the same components and
      * nodes.
      */
+    template <int dim>
     std::vector<std::vector<unsigned int>>
     subcell_groups(const FiniteElement<dim> &fe, const unsigned int groups_per_subcell)
     {
@@ -165,6 +167,7 @@ namespace viscofilm
      * system's); the implicit elastic viscosity, known at the Q2 points only,
      * enters with its cell mean.
      */
+    template <int dim>
     class SubcellAssembler
     {
     public:
@@ -203,22 +206,22 @@ namespace viscofilm
 
       /// The sub-cell matrix of @p cell, whose φ is on @p phi_cell.
       void
-      add(const DoFHandler<dim>::active_cell_iterator &cell,
-          const DoFHandler<dim>::active_cell_iterator &phi_cell,
+      add(const typename DoFHandler<dim>::active_cell_iterator &cell,
+          const typename DoFHandler<dim>::active_cell_iterator &phi_cell,
           const TrilinosWrappers::MPI::Vector &        phi,
           const double                                 elastic_viscosity,
           const double                                 mass_coefficient,
           const Model &                                model,
-          const StokesSolver::Averaging                averaging,
+          const typename StokesSolver<dim>::Averaging                averaging,
           const AffineConstraints<double> &            constraints,
           TrilinosWrappers::SparseMatrix &             matrix)
       {
-        values.reinit(Triangulation<dim>::cell_iterator(cell));
+        values.reinit(typename Triangulation<dim>::cell_iterator(cell));
         phi_values.reinit(phi_cell);
         phi_values.get_function_values(phi, volume_fraction);
         for (unsigned int q = 0; q < quadrature.size(); ++q)
           viscosity[q] = model.viscosity(volume_fraction[q]);
-        StokesSolver::average_viscosity(averaging, values.get_JxW_values(), viscosity);
+        StokesSolver<dim>::average_viscosity(averaging, values.get_JxW_values(), viscosity);
         const FEValuesExtractors::Vector velocities(0);
         const unsigned int               n = groups[0].size();
         // One matrix for the cell's velocity dofs: entries of dofs in no
@@ -275,10 +278,11 @@ namespace viscofilm
     };
 
 
-    class BlockPreconditioned : public StokesLinearSolver
+    template <int dim>
+    class BlockPreconditioned : public StokesLinearSolver<dim>
     {
     public:
-      BlockPreconditioned(const StokesSolver::Parameters &parameters, const Model &model)
+      BlockPreconditioned(const typename StokesSolver<dim>::Parameters &parameters, const Model &model)
         : parameters(parameters)
         , model(model)
       {}
@@ -298,7 +302,7 @@ namespace viscofilm
       void
       start_matrix() override;
       void
-      add_cell_matrix(const StokesCellMatrix &         cell,
+      add_cell_matrix(const StokesCellMatrix<dim> &         cell,
                       const AffineConstraints<double> &constraints) override;
       void
       finish_matrix() override;
@@ -327,9 +331,9 @@ namespace viscofilm
       void
       assemble_subcell_matrix();
 
-      using AMGMatrix = StokesSolver::AMGMatrix;
+      using AMGMatrix = typename StokesSolver<dim>::AMGMatrix;
 
-      const StokesSolver::Parameters &parameters;
+      const typename StokesSolver<dim>::Parameters &parameters;
       const Model &                   model;
       const DoFHandler<dim> *         dofs = nullptr;
       MPI_Comm                        mpi_communicator = MPI_COMM_SELF;
@@ -346,7 +350,7 @@ namespace viscofilm
       std::vector<std::vector<unsigned int>> groups;
       struct SubcellSource
       {
-        DoFHandler<dim>::active_cell_iterator cell, volume_fraction_cell;
+        typename DoFHandler<dim>::active_cell_iterator cell, volume_fraction_cell;
         double                                elastic_viscosity;
       };
       std::vector<SubcellSource>           subcell_sources;
@@ -377,8 +381,9 @@ namespace viscofilm
     };
 
 
+    template <int dim>
     void
-    BlockPreconditioned::reinit(const DoFHandler<dim> &           dofs,
+    BlockPreconditioned<dim>::reinit(const DoFHandler<dim> &           dofs,
                                 const AffineConstraints<double> & constraints,
                                 const std::vector<IndexSet> &     owned_partitioning,
                                 const std::vector<IndexSet> &     relevant_partitioning)
@@ -446,8 +451,9 @@ namespace viscofilm
     }
 
 
+    template <int dim>
     void
-    BlockPreconditioned::start_matrix()
+    BlockPreconditioned<dim>::start_matrix()
     {
       system_matrix         = 0;
       preconditioner_matrix = 0;
@@ -457,8 +463,9 @@ namespace viscofilm
     }
 
 
+    template <int dim>
     void
-    BlockPreconditioned::add_cell_matrix(const StokesCellMatrix &         cell,
+    BlockPreconditioned<dim>::add_cell_matrix(const StokesCellMatrix<dim> &         cell,
                                          const AffineConstraints<double> &constraints)
     {
       const FEValues<dim> &            fe_values = cell.fe_values;
@@ -508,8 +515,9 @@ namespace viscofilm
     }
 
 
+    template <int dim>
     void
-    BlockPreconditioned::finish_matrix()
+    BlockPreconditioned<dim>::finish_matrix()
     {
       system_matrix.compress(VectorOperation::add);
       preconditioner_matrix.compress(VectorOperation::add);
@@ -534,13 +542,14 @@ namespace viscofilm
     }
 
 
+    template <int dim>
     void
-    BlockPreconditioned::assemble_subcell_matrix()
+    BlockPreconditioned<dim>::assemble_subcell_matrix()
     {
       subcell_matrix = 0;
       if (!subcell_sources.empty())
         {
-          SubcellAssembler subcells(dofs->get_fe().base_element(1),
+          SubcellAssembler<dim> subcells(dofs->get_fe().base_element(1),
                                     subcell_sources[0].volume_fraction_cell->get_fe(),
                                     groups);
           for (const SubcellSource &source : subcell_sources)
@@ -558,8 +567,9 @@ namespace viscofilm
     }
 
 
+    template <int dim>
     void
-    BlockPreconditioned::build_preconditioner()
+    BlockPreconditioned<dim>::build_preconditioner()
     {
       TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
       DoFTools::extract_constant_modes(*dofs,
@@ -586,8 +596,9 @@ namespace viscofilm
     }
 
 
+    template <int dim>
     unsigned int
-    BlockPreconditioned::solve(const TrilinosWrappers::MPI::BlockVector &rhs,
+    BlockPreconditioned<dim>::solve(const TrilinosWrappers::MPI::BlockVector &rhs,
                                const TrilinosWrappers::MPI::BlockVector &guess,
                                const AffineConstraints<double> &         constraints,
                                TrilinosWrappers::MPI::BlockVector &      solution)
@@ -614,7 +625,7 @@ namespace viscofilm
               control,
               SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(
                 parameters.krylov_basis));
-            const BlockSchurPreconditioner preconditioner(system_matrix,
+            const BlockSchurPreconditioner<dim> preconditioner(system_matrix,
                                                           preconditioner_matrix.block(1, 1),
                                                           *velocity_amg,
                                                           *mass_jacobi,
@@ -683,10 +694,19 @@ namespace viscofilm
   } // namespace
 
 
-  std::unique_ptr<StokesLinearSolver>
-  make_block_preconditioned_solver(const StokesSolver::Parameters &parameters,
+  template <int dim>
+  std::unique_ptr<StokesLinearSolver<dim>>
+  make_block_preconditioned_solver(const typename StokesSolver<dim>::Parameters &parameters,
                                    const Model &                   model)
   {
-    return std::make_unique<BlockPreconditioned>(parameters, model);
+    return std::make_unique<BlockPreconditioned<dim>>(parameters, model);
   }
+
+
+#define INSTANTIATE(dim)                                                 \
+  template std::unique_ptr<StokesLinearSolver<dim>>                        \
+  make_block_preconditioned_solver<dim>(const typename StokesSolver<dim>::Parameters &, \
+                                        const Model &);
+  VISCOFILM_FOR_EACH_DIM(INSTANTIATE)
+#undef INSTANTIATE
 } // namespace viscofilm

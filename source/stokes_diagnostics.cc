@@ -17,6 +17,7 @@ namespace viscofilm
   {
     /// ∇·u, the vorticity ∇×u (2D: the scalar ∂v/∂x − ∂u/∂y) and |u·∇u|
     /// from the Stokes solution.
+    template <int dim>
     class FlowPostprocessor : public DataPostprocessor<dim>
     {
     public:
@@ -82,8 +83,9 @@ namespace viscofilm
   } // namespace
 
 
+  template <int dim>
   void
-  StokesSolver::add_output(DataOut<dim> &data_out) const
+  StokesSolver<dim>::add_output(DataOut<dim> &data_out) const
   {
     std::vector<std::string> names(dim, "velocity");
     names.push_back("pressure");
@@ -92,13 +94,14 @@ namespace viscofilm
     interpretation.push_back(DataComponentInterpretation::component_is_scalar);
     data_out.add_data_vector(dofs, current_solution, names, interpretation);
     // DataOut keeps a pointer to the postprocessor until it is done.
-    static const FlowPostprocessor flow_postprocessor;
+    static const FlowPostprocessor<dim> flow_postprocessor;
     data_out.add_data_vector(dofs, current_solution, flow_postprocessor);
   }
 
 
+  template <int dim>
   double
-  StokesSolver::max_velocity() const
+  StokesSolver<dim>::max_velocity() const
   {
     const Quadrature<dim> nodes(fe.base_element(0).get_unit_support_points());
     FEValues<dim>         fe_values(fe, nodes, update_values);
@@ -117,8 +120,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   double
-  StokesSolver::max_cell_divergence() const
+  StokesSolver<dim>::max_cell_divergence() const
   {
     const QGauss<dim>                  quadrature(fe.degree + 1);
     FEValues<dim>                      fe_values(fe, quadrature, update_gradients | update_JxW_values);
@@ -139,8 +143,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   Vector<float>
-  StokesSolver::velocity_error_indicator() const
+  StokesSolver<dim>::velocity_error_indicator() const
   {
     Vector<float> indicator(triangulation.n_active_cells());
     KellyErrorEstimator<dim>::estimate(dofs,
@@ -153,8 +158,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   double
-  StokesSolver::velocity_relative_change(
+  StokesSolver<dim>::velocity_relative_change(
     const TrilinosWrappers::MPI::BlockVector &previous) const
   {
     // ‖u − u_prev‖_L2 / ‖u‖_L2: the velocity alone, as the pressure's size
@@ -179,4 +185,7 @@ namespace viscofilm
     Utilities::MPI::sum(squares, mpi_communicator, squares);
     return squares[1] > 0 ? std::sqrt(squares[0] / squares[1]) : std::sqrt(squares[0]);
   }
+
+
+  VISCOFILM_INSTANTIATE(StokesSolver)
 } // namespace viscofilm

@@ -2,31 +2,37 @@
 
 namespace viscofilm
 {
-  std::unique_ptr<StokesLinearSolver>
-  StokesLinearSolver::create(const StokesSolver::Parameters &parameters, const Model &model)
+  template <int dim>
+  std::unique_ptr<StokesLinearSolver<dim>>
+  StokesLinearSolver<dim>::create(const typename StokesSolver<dim>::Parameters &parameters, const Model &model)
   {
     switch (parameters.method)
       {
-        case StokesSolver::Method::direct:
-          return make_direct_solver(parameters);
-        case StokesSolver::Method::thesis:
-          return make_thesis_solver(parameters);
+        case StokesSolver<dim>::Method::direct:
+          return make_direct_solver<dim>(parameters);
+        case StokesSolver<dim>::Method::thesis:
+          return make_thesis_solver<dim>(parameters);
         default:
-          return make_block_preconditioned_solver(parameters, model);
+          return make_block_preconditioned_solver<dim>(parameters, model);
       }
   }
 
 
+  template <int dim>
   unsigned int
-  StokesLinearSolver::n_preconditioner_builds() const
+  StokesLinearSolver<dim>::n_preconditioner_builds() const
   {
     return 0;
   }
 
 
+  template <int dim>
   double
-  StokesLinearSolver::viscosity_change_since_build() const
+  StokesLinearSolver<dim>::viscosity_change_since_build() const
   {
     return 0;
   }
+
+
+  VISCOFILM_INSTANTIATE(StokesLinearSolver)
 } // namespace viscofilm

@@ -19,10 +19,11 @@ namespace viscofilm
   {
     /// The matrix and the copies between the block vectors and one vector;
     /// the solve itself is the derived class'.
-    class Monolithic : public StokesLinearSolver
+    template <int dim>
+    class Monolithic : public StokesLinearSolver<dim>
     {
     public:
-      explicit Monolithic(const StokesSolver::Parameters &parameters)
+      explicit Monolithic(const typename StokesSolver<dim>::Parameters &parameters)
         : parameters(parameters)
       {}
 
@@ -62,7 +63,7 @@ namespace viscofilm
       }
 
       void
-      add_cell_matrix(const StokesCellMatrix &         cell,
+      add_cell_matrix(const StokesCellMatrix<dim> &         cell,
                       const AffineConstraints<double> &constraints) override
       {
         constraints.distribute_local_to_global(cell.matrix, cell.dof_indices, matrix);
@@ -100,7 +101,7 @@ namespace viscofilm
       virtual unsigned int
       solve_system(TrilinosWrappers::MPI::Vector &x, const TrilinosWrappers::MPI::Vector &b) = 0;
 
-      const StokesSolver::Parameters &parameters;
+      const typename StokesSolver<dim>::Parameters &parameters;
       TrilinosWrappers::SparseMatrix  matrix;
 
     private:
@@ -110,10 +111,11 @@ namespace viscofilm
 
 
     /// Sparse LU (Amesos KLU): tiny meshes and debugging.
-    class Direct : public Monolithic
+    template <int dim>
+    class Direct : public Monolithic<dim>
     {
     public:
-      using Monolithic::Monolithic;
+      using Monolithic<dim>::Monolithic;
 
     protected:
       unsigned int
@@ -121,17 +123,18 @@ namespace viscofilm
       {
         SolverControl                  control(1, 0);
         TrilinosWrappers::SolverDirect solver(control);
-        solver.solve(matrix, x, b);
+        solver.solve(this->matrix, x, b);
         return 0;
       }
     };
 
 
     /// The thesis' solver: GMRES(100) with ILU(0) of the whole system.
-    class Thesis : public Monolithic
+    template <int dim>
+    class Thesis : public Monolithic<dim>
     {
     public:
-      using Monolithic::Monolithic;
+      using Monolithic<dim>::Monolithic;
 
     protected:
       unsigned int
@@ -140,13 +143,13 @@ namespace viscofilm
         // The zero pressure diagonal needs the absolute diagonal shift
         // ilu_atol to factorise.
         TrilinosWrappers::PreconditionILU ilu;
-        ilu.initialize(matrix, TrilinosWrappers::PreconditionILU::AdditionalData(0, 1e-8));
-        SolverControl control(parameters.max_iterations, parameters.tolerance * b.l2_norm());
+        ilu.initialize(this->matrix, TrilinosWrappers::PreconditionILU::AdditionalData(0, 1e-8));
+        SolverControl control(this->parameters.max_iterations, this->parameters.tolerance * b.l2_norm());
         TrilinosWrappers::SolverGMRES solver(
           control, TrilinosWrappers::SolverGMRES::AdditionalData(false, 100));
         try
           {
-            solver.solve(matrix, x, b, ilu);
+            solver.solve(this->matrix, x, b, ilu);
           }
         catch (const SolverControl::NoConvergence &e)
           {
@@ -155,7 +158,7 @@ namespace viscofilm
                              std::to_string(e.last_step) + " iterations: residual " +
                              Utilities::to_string(e.last_residual) +
                              " (Stokes solver/Maximum iterations = " +
-                             std::to_string(parameters.max_iterations) + ")");
+                             std::to_string(this->parameters.max_iterations) + ")");
           }
         return control.last_step();
       }
@@ -163,16 +166,27 @@ namespace viscofilm
   } // namespace
 
 
-  std::unique_ptr<StokesLinearSolver>
-  make_direct_solver(const StokesSolver::Parameters &parameters)
+  template <int dim>
+  std::unique_ptr<StokesLinearSolver<dim>>
+  make_direct_solver(const typename StokesSolver<dim>::Parameters &parameters)
   {
-    return std::make_unique<Direct>(parameters);
+    return std::make_unique<Direct<dim>>(parameters);
   }
 
 
-  std::unique_ptr<StokesLinearSolver>
-  make_thesis_solver(const StokesSolver::Parameters &parameters)
+  template <int dim>
+  std::unique_ptr<StokesLinearSolver<dim>>
+  make_thesis_solver(const typename StokesSolver<dim>::Parameters &parameters)
   {
-    return std::make_unique<Thesis>(parameters);
+    return std::make_unique<Thesis<dim>>(parameters);
   }
+
+
+#define INSTANTIATE(dim)                                                  \
+  template std::unique_ptr<StokesLinearSolver<dim>> make_direct_solver<dim>( \
+    const typename StokesSolver<dim>::Parameters &);                                 \
+  template std::unique_ptr<StokesLinearSolver<dim>> make_thesis_solver<dim>( \
+    const typename StokesSolver<dim>::Parameters &);
+  VISCOFILM_FOR_EACH_DIM(INSTANTIATE)
+#undef INSTANTIATE
 } // namespace viscofilm

@@ -50,10 +50,11 @@ namespace viscofilm
 
     /// τ = Model::stress(c, φ) as output fields; φ is evaluated at the
     /// output points only where τ depends on it (Rheology = phases).
+    template <int dim>
     class StressPostprocessor : public DataPostprocessor<dim>
     {
     public:
-      StressPostprocessor(const ElasticStress &stress, const VolumeFraction &volume_fraction)
+      StressPostprocessor(const ElasticStress<dim> &stress, const VolumeFraction<dim> &volume_fraction)
         : stress(stress)
         , volume_fraction(volume_fraction)
       {}
@@ -81,7 +82,7 @@ namespace viscofilm
           {
             const SymmetricTensor<2, dim> tau =
               stress.stress_of(inputs.solution_values[q], phi[q]);
-            for (unsigned int k = 0; k < n_symmetric_components; ++k)
+            for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
               computed[q][k] = stored_component(tau, k);
           }
       }
@@ -90,8 +91,8 @@ namespace viscofilm
       get_names() const override
       {
         std::vector<std::string> names;
-        for (unsigned int k = 0; k < n_symmetric_components; ++k)
-          names.push_back("tau_" + symmetric_component_name(k));
+        for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
+          names.push_back("tau_" + symmetric_component_name<dim>(k));
         return names;
       }
 
@@ -102,14 +103,15 @@ namespace viscofilm
       }
 
     private:
-      const ElasticStress & stress;
-      const VolumeFraction &volume_fraction;
+      const ElasticStress<dim> & stress;
+      const VolumeFraction<dim> &volume_fraction;
     };
   } // namespace
 
 
+  template <int dim>
   void
-  ElasticStress::Parameters::declare_parameters(ParameterHandler &prm)
+  ElasticStress<dim>::Parameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Stress");
     prm.declare_entry("Element",
@@ -162,8 +164,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  ElasticStress::Parameters::parse_parameters(ParameterHandler &prm)
+  ElasticStress<dim>::Parameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Stress");
     discontinuous        = (prm.get("Element") == "discontinuous");
@@ -175,11 +178,12 @@ namespace viscofilm
   }
 
 
-  ElasticStress::ElasticStress(
+  template <int dim>
+  ElasticStress<dim>::ElasticStress(
     const parallel::distributed::Triangulation<dim> &triangulation,
     const Parameters &                             parameters,
     const Model &                                  model,
-    const BoundaryConditions &                     boundary_conditions,
+    const BoundaryConditions<dim> &                     boundary_conditions,
     const unsigned int                             order)
     : triangulation(triangulation)
     , parameters(parameters)
@@ -189,28 +193,31 @@ namespace viscofilm
     , fe(parameters.discontinuous ?
            static_cast<const FiniteElement<dim> &>(FE_DGQ<dim>(2)) :
            static_cast<const FiniteElement<dim> &>(FE_Q<dim>(2)),
-         n_symmetric_components)
+         n_symmetric_components<dim>)
     , dofs(triangulation)
   {}
 
 
+  template <int dim>
   SymmetricTensor<2, dim>
-  ElasticStress::stress_of(const Vector<double> &conformation,
+  ElasticStress<dim>::stress_of(const Vector<double> &conformation,
                            const double          volume_fraction) const
   {
-    return model.stress(symmetric_tensor(conformation), volume_fraction);
+    return model.stress(symmetric_tensor<dim>(conformation), volume_fraction);
   }
 
 
+  template <int dim>
   bool
-  ElasticStress::stress_depends_on_volume_fraction() const
+  ElasticStress<dim>::stress_depends_on_volume_fraction() const
   {
     return model.rheology == Model::Rheology::phases;
   }
 
 
+  template <int dim>
   void
-  ElasticStress::setup_dofs(const Quadrature<dim> &quadrature)
+  ElasticStress<dim>::setup_dofs(const Quadrature<dim> &quadrature)
   {
     const MPI_Comm comm = triangulation.get_communicator();
     dofs.distribute_dofs(fe);
@@ -254,7 +261,7 @@ namespace viscofilm
               node.position = StaticMappingQ1<dim>::mapping.transform_unit_to_real_cell(
                 cell, unit_support[k]);
               node.cell = cell;
-              for (unsigned int c = 0; c < n_symmetric_components; ++c)
+              for (unsigned int c = 0; c < n_symmetric_components<dim>; ++c)
                 node.dofs[c] = cell_dofs[fe.component_to_system_index(c, k)];
               nodes.push_back(node);
             }
@@ -266,8 +273,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  ElasticStress::find_wall_normals()
+  ElasticStress<dim>::find_wall_normals()
   {
     // The outward normal of face f (normal to the unit axis f/2) at a
     // point: ±(row f/2 of the inverse Jacobian), normalised.
@@ -275,9 +283,9 @@ namespace viscofilm
     FEValues<dim>         geometry(fe, at_nodes, update_inverse_jacobians);
     const auto no_slip = [this](const auto &face) {
       return face->at_boundary() && boundary_conditions.boundary(face->boundary_id()).type ==
-                                      BoundaryConditions::Type::no_slip;
+                                      BoundaryConditions<dim>::Type::no_slip;
     };
-    for_each_node_on_cells([&](const DoFHandler<dim>::active_cell_iterator &cell,
+    for_each_node_on_cells([&](const typename DoFHandler<dim>::active_cell_iterator &cell,
                                const Quadrature<dim> &,
                                const std::vector<unsigned int> &node_of_support) {
       const auto faces = cell->face_iterators();
@@ -303,16 +311,17 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  ElasticStress::set_initial_conditions(const Function<dim> &    initial_stress,
-                                        const VolumeFraction &volume_fraction)
+  ElasticStress<dim>::set_initial_conditions(const Function<dim> &    initial_stress,
+                                        const VolumeFraction<dim> &volume_fraction)
   {
     const std::vector<double> phi = nodal_volume_fraction(volume_fraction);
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
                                               triangulation.get_communicator());
     // Without elastic stress τ ≡ 0 (c = shift I) whatever the input says:
     // nothing updates c then, so a non-zero τ0 would act on the flow for ever.
-    Vector<double> tau(n_symmetric_components);
+    Vector<double> tau(n_symmetric_components<dim>);
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
         const Node &node = nodes[i];
@@ -335,23 +344,25 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   SymmetricTensor<2, dim>
-  ElasticStress::conformation(const Vector<double> &tau, const double phi) const
+  ElasticStress<dim>::conformation(const Vector<double> &tau, const double phi) const
   {
-    AssertDimension(tau.size(), n_symmetric_components);
-    return model.conformation(symmetric_tensor(tau), phi);
+    AssertDimension(tau.size(), n_symmetric_components<dim>);
+    return model.conformation(symmetric_tensor<dim>(tau), phi);
   }
 
 
+  template <int dim>
   void
-  ElasticStress::trace_back(DepartureFeet &       feet,
-                            const StokesSolver &  stokes,
-                            const VolumeFraction &volume_fraction,
+  ElasticStress<dim>::trace_back(DepartureFeet<dim> &       feet,
+                            const StokesSolver<dim> &  stokes,
+                            const VolumeFraction<dim> &volume_fraction,
                             const double          time,
                             const double          time_step)
   {
     std::vector<Point<dim>>                               points(nodes.size());
-    std::vector<Triangulation<dim>::active_cell_iterator> cells(nodes.size());
+    std::vector<typename Triangulation<dim>::active_cell_iterator> cells(nodes.size());
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
         points[i] = nodes[i].position;
@@ -370,13 +381,13 @@ namespace viscofilm
     const double       this_rank = Utilities::MPI::this_mpi_process(comm);
     const bool         guard     = parameters.positivity_safe_feet && model.relaxed_conformation() > 0;
     unsigned int       fixes     = 0;
-    FEPointEvaluation<n_symmetric_components, dim> conformation(StaticMappingQ1<dim>::mapping, fe, update_values, 0);
+    FEPointEvaluation<n_symmetric_components<dim>, dim> conformation(StaticMappingQ1<dim>::mapping, fe, update_values, 0);
     std::vector<double>     cell_values(fe.n_dofs_per_cell());
 
     // The foot's c, and the rank that evaluated it (to count remote feet).
-    constexpr unsigned int                     n_values = n_symmetric_components + 1;
-    const CellEvaluation<n_values> evaluate =
-      [&](const Triangulation<dim>::active_cell_iterator &cell,
+    constexpr unsigned int                     n_values = n_symmetric_components<dim> + 1;
+    const CellEvaluation<dim, n_values> evaluate =
+      [&](const typename Triangulation<dim>::active_cell_iterator &cell,
           const ArrayView<const Point<dim>> &             unit_points,
           const ArrayView<std::array<double, n_values>> & values) {
         cell_of(dofs, cell)->get_dof_values(old, cell_values.begin(), cell_values.end());
@@ -384,8 +395,8 @@ namespace viscofilm
         conformation.evaluate(cell_values, EvaluationFlags::values);
         for (unsigned int q = 0; q < unit_points.size(); ++q)
           {
-            Tensor<1, n_symmetric_components> c = conformation.get_value(q);
-            if (guard && smallest_eigenvalue(symmetric_tensor(c)) <= 0)
+            Tensor<1, n_symmetric_components<dim>> c = conformation.get_value(q);
+            if (guard && smallest_eigenvalue(symmetric_tensor<dim>(c)) <= 0)
               {
                 // Multilinear interpolation on the Q1 sub-cell of the Q2 nodes.
                 const Point<dim> &p = unit_points[q];
@@ -407,24 +418,24 @@ namespace viscofilm
                         weight *= offset ? xi[d] : 1 - xi[d];
                         node += (corner[d] + offset) * stride;
                       }
-                    for (unsigned int component = 0; component < n_symmetric_components;
+                    for (unsigned int component = 0; component < n_symmetric_components<dim>;
                          ++component)
                       c[component] += weight * cell_values[fe.component_to_system_index(
                                                  component, lexicographic_node[node])];
                   }
                 ++fixes;
               }
-            for (unsigned int component = 0; component < n_symmetric_components; ++component)
+            for (unsigned int component = 0; component < n_symmetric_components<dim>; ++component)
               values[q][component] = c[component];
-            values[q][n_symmetric_components] = this_rank;
+            values[q][n_symmetric_components<dim>] = this_rank;
           }
       };
 
-    const auto   values = feet.at_feet().evaluate<n_values>(evaluate);
+    const auto   values = feet.at_feet().template evaluate<n_values>(evaluate);
     const std::vector<types::boundary_id> &inflow   = feet.inflow_boundaries();
     const std::vector<Point<dim>> &        at_feet  = feet.at_feet().located_points();
     unsigned int                           remote   = 0;
-    Vector<double>                         tau(n_symmetric_components);
+    Vector<double>                         tau(n_symmetric_components<dim>);
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
         const auto &v = values[i];
@@ -436,13 +447,13 @@ namespace viscofilm
             FunctionParser<dim> &stress = boundary_conditions.boundary(inflow[i]).stress.function();
             stress.set_time(time);
             stress.vector_value(at_feet[i], tau);
-            nodes[i].foot_conformation = ElasticStress::conformation(
+            nodes[i].foot_conformation = ElasticStress<dim>::conformation(
               tau, boundary_conditions.boundary(inflow[i]).volume_fraction);
           }
         else
           nodes[i].foot_conformation =
-            symmetric_tensor(v);
-        if (v[n_symmetric_components] != this_rank)
+            symmetric_tensor<dim>(v);
+        if (v[n_symmetric_components<dim>] != this_rank)
           ++remote;
       }
     remote_feet      = Utilities::MPI::sum(remote, comm);
@@ -452,10 +463,11 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  ElasticStress::at_feet_for_second_order(const DepartureFeet &   feet,
-                                          const StokesSolver &  stokes,
-                                          const VolumeFraction &volume_fraction)
+  ElasticStress<dim>::at_feet_for_second_order(const DepartureFeet<dim> &   feet,
+                                          const StokesSolver<dim> &  stokes,
+                                          const VolumeFraction<dim> &volume_fraction)
   {
     // ∇u^n (the deformation's rate at t_n) and φ^n at the feet (inflow feet:
     // the boundary's volume fraction, as for c there). ∇u^n is the field a
@@ -467,14 +479,14 @@ namespace viscofilm
     // number of components.
     constexpr unsigned int n_entries = dim * dim;
     constexpr unsigned int n_vectors =
-      (n_entries + n_symmetric_components - 1) / n_symmetric_components;
+      (n_entries + n_symmetric_components<dim> - 1) / n_symmetric_components<dim>;
     const std::vector<Tensor<2, dim>>             nodal_gradient = nodal_velocity_gradient(stokes);
     std::array<TrilinosWrappers::MPI::Vector, n_vectors> gradient;
     for (TrilinosWrappers::MPI::Vector &vector : gradient)
       vector.reinit(dofs.locally_owned_dofs(), triangulation.get_communicator());
     for (unsigned int i = 0; i < nodes.size(); ++i)
       for (unsigned int m = 0; m < n_entries; ++m)
-        gradient[m / n_symmetric_components][nodes[i].dofs[m % n_symmetric_components]] =
+        gradient[m / n_symmetric_components<dim>][nodes[i].dofs[m % n_symmetric_components<dim>]] =
           nodal_gradient[i][m / dim][m % dim];
     for (TrilinosWrappers::MPI::Vector &vector : gradient)
       {
@@ -491,15 +503,15 @@ namespace viscofilm
     // [dim + dim d + e]; φ^n at [0].
     const FiniteElement<dim> &phi_fe = volume_fraction.dof_handler().get_fe();
     FEPointEvaluation<1, dim> phi(StaticMappingQ1<dim>::mapping, phi_fe, update_values);
-    FEPointEvaluation<n_symmetric_components, dim> gradient_values(StaticMappingQ1<dim>::mapping,
+    FEPointEvaluation<n_symmetric_components<dim>, dim> gradient_values(StaticMappingQ1<dim>::mapping,
                                                                    fe,
                                                                    update_values);
     std::vector<double> phi_dofs(phi_fe.n_dofs_per_cell());
     std::vector<double> gradient_dofs(fe.n_dofs_per_cell());
-    const auto          values = feet.at_feet().evaluate<n_velocity_values>(
-      [&](const Triangulation<dim>::active_cell_iterator &            cell,
+    const auto          values = feet.at_feet().template evaluate<n_velocity_values<dim>>(
+      [&](const typename Triangulation<dim>::active_cell_iterator &            cell,
           const ArrayView<const Point<dim>> &                         unit_points,
-          const ArrayView<std::array<double, n_velocity_values>> &    values) {
+          const ArrayView<std::array<double, n_velocity_values<dim>>> &    values) {
         gradient_values.reinit(cell, unit_points);
         for (unsigned int v = 0; v < n_vectors; ++v)
           {
@@ -508,10 +520,10 @@ namespace viscofilm
                                                 gradient_dofs.end());
             gradient_values.evaluate(gradient_dofs, EvaluationFlags::values);
             for (unsigned int q = 0; q < unit_points.size(); ++q)
-              for (unsigned int m = v * n_symmetric_components;
-                   m < std::min(n_entries, (v + 1) * n_symmetric_components);
+              for (unsigned int m = v * n_symmetric_components<dim>;
+                   m < std::min(n_entries, (v + 1) * n_symmetric_components<dim>);
                    ++m)
-                values[q][dim + m] = gradient_values.get_value(q)[m % n_symmetric_components];
+                values[q][dim + m] = gradient_values.get_value(q)[m % n_symmetric_components<dim>];
           }
         cell_of(volume_fraction.dof_handler(), cell)
           ->get_dof_values(volume_fraction.solution(), phi_dofs.begin(), phi_dofs.end());
@@ -533,9 +545,10 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   template <typename CellFunction>
   void
-  ElasticStress::for_each_node_on_cells(const CellFunction &on_cell) const
+  ElasticStress<dim>::for_each_node_on_cells(const CellFunction &on_cell) const
   {
     // Ghost cells too: a continuous node on a rank boundary sees all of its
     // cells.
@@ -559,8 +572,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   std::vector<Tensor<2, dim>>
-  ElasticStress::nodal_velocity_gradient(const StokesSolver &stokes) const
+  ElasticStress<dim>::nodal_velocity_gradient(const StokesSolver<dim> &stokes) const
   {
     const Quadrature<dim> at_nodes(fe.base_element(0).get_unit_support_points());
     FEValues<dim> stokes_values(stokes.dof_handler().get_fe(), at_nodes, update_gradients);
@@ -568,7 +582,7 @@ namespace viscofilm
     std::vector<Tensor<2, dim>>        gradients(at_nodes.size());
     std::vector<Tensor<2, dim>>        velocity_gradient(nodes.size());
     std::vector<unsigned int>        n_cells(nodes.size(), 0);
-    for_each_node_on_cells([&](const DoFHandler<dim>::active_cell_iterator &cell,
+    for_each_node_on_cells([&](const typename DoFHandler<dim>::active_cell_iterator &cell,
                                const Quadrature<dim> &,
                                const std::vector<unsigned int> &node_of_support) {
       stokes_values.reinit(cell_of(stokes.dof_handler(), cell));
@@ -595,14 +609,15 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   std::vector<double>
-  ElasticStress::nodal_volume_fraction(const VolumeFraction &volume_fraction) const
+  ElasticStress<dim>::nodal_volume_fraction(const VolumeFraction<dim> &volume_fraction) const
   {
     const Quadrature<dim> at_nodes(fe.base_element(0).get_unit_support_points());
     FEValues<dim> phi_values(volume_fraction.dof_handler().get_fe(), at_nodes, update_values);
     std::vector<double> phis(at_nodes.size());
     std::vector<double> phi(nodes.size(), 0.0);
-    for_each_node_on_cells([&](const DoFHandler<dim>::active_cell_iterator &cell,
+    for_each_node_on_cells([&](const typename DoFHandler<dim>::active_cell_iterator &cell,
                                const Quadrature<dim> &,
                                const std::vector<unsigned int> &node_of_support) {
       phi_values.reinit(cell_of(volume_fraction.dof_handler(), cell));
@@ -615,9 +630,10 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   double
-  ElasticStress::update(const StokesSolver &  stokes,
-                        const VolumeFraction &volume_fraction,
+  ElasticStress<dim>::update(const StokesSolver<dim> &  stokes,
+                        const VolumeFraction<dim> &volume_fraction,
                         const double          time_step)
   {
     const std::vector<Tensor<2, dim>> velocity_gradient = nodal_velocity_gradient(stokes);
@@ -696,9 +712,10 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   double
-  ElasticStress::relative_change(const TrilinosWrappers::MPI::Vector &previous,
-                                 const VolumeFraction &volume_fraction) const
+  ElasticStress<dim>::relative_change(const TrilinosWrappers::MPI::Vector &previous,
+                                 const VolumeFraction<dim> &volume_fraction) const
   {
     // ‖Δτ‖_L2 / ‖τ‖_L2 with the Frobenius norm; Δτ = G Δc, but τ's own size,
     // not c's (which includes the relaxed state), is the scale.
@@ -707,9 +724,9 @@ namespace viscofilm
                            stokes_quadrature,
                            update_values);
     std::vector<Vector<double>> now(stokes_quadrature.size(),
-                                    Vector<double>(n_symmetric_components));
+                                    Vector<double>(n_symmetric_components<dim>));
     std::vector<Vector<double>> before(stokes_quadrature.size(),
-                                       Vector<double>(n_symmetric_components));
+                                       Vector<double>(n_symmetric_components<dim>));
     std::vector<double>         phi(stokes_quadrature.size());
     const double                rest = model.relaxed_conformation();
     // ‖G (a − b)‖_F² of two tensors given by their stored components, with
@@ -717,15 +734,15 @@ namespace viscofilm
     const auto frobenius_square =
       [](const double G, const Vector<double> &a, const Vector<double> &b, const double shift) {
         double square = 0;
-        for (unsigned int k = 0; k < n_symmetric_components; ++k)
+        for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
           {
-            const auto [i, j]    = symmetric_component(k);
+            const auto [i, j]    = symmetric_component<dim>(k);
             const double entry   = G * (a[k] - (i == j ? b[k] + shift : b[k]));
             square += (i == j ? 1 : 2) * entry * entry;
           }
         return square;
       };
-    const Vector<double> zero(n_symmetric_components);
+    const Vector<double> zero(n_symmetric_components<dim>);
     double squares[2] = {0, 0}; // change, size
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -747,8 +764,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   unsigned int
-  ElasticStress::repair_positivity(TrilinosWrappers::MPI::Vector &distributed) const
+  ElasticStress<dim>::repair_positivity(TrilinosWrappers::MPI::Vector &distributed) const
   {
     // Nodes set by Q2 interpolation (hanging nodes, new nodes of refined
     // cells) are weighted sums with a weight −1/8, not convex ones; raise
@@ -776,52 +794,57 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  ElasticStress::stress_at_quadrature_points(
-    const DoFHandler<dim>::active_cell_iterator &cell,
+  ElasticStress<dim>::stress_at_quadrature_points(
+    const typename DoFHandler<dim>::active_cell_iterator &cell,
     const std::vector<double> &                volume_fraction,
     std::vector<SymmetricTensor<2, dim>> &       tau) const
   {
     quadrature_values->reinit(cell_of(dofs, cell));
-    std::vector<Vector<double>> c(tau.size(), Vector<double>(n_symmetric_components));
+    std::vector<Vector<double>> c(tau.size(), Vector<double>(n_symmetric_components<dim>));
     quadrature_values->get_function_values(current, c);
     for (unsigned int q = 0; q < tau.size(); ++q)
       tau[q] = stress_of(c[q], volume_fraction[q]);
   }
 
 
+  template <int dim>
   SymmetricTensor<2, dim>
-  ElasticStress::conformation_at(const Node &node, const TrilinosWrappers::MPI::Vector &vector)
+  ElasticStress<dim>::conformation_at(const Node &node, const TrilinosWrappers::MPI::Vector &vector)
   {
     SymmetricTensor<2, dim> c;
-    for (unsigned int k = 0; k < n_symmetric_components; ++k)
+    for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
       {
-        const auto [i, j] = symmetric_component(k);
+        const auto [i, j] = symmetric_component<dim>(k);
         c[i][j]           = vector[node.dofs[k]];
       }
     return c;
   }
 
 
+  template <int dim>
   void
-  ElasticStress::set_conformation(const Node &                   node,
+  ElasticStress<dim>::set_conformation(const Node &                   node,
                                   const SymmetricTensor<2, dim> &c,
                                   TrilinosWrappers::MPI::Vector &vector)
   {
-    for (unsigned int k = 0; k < n_symmetric_components; ++k)
+    for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
       vector[node.dofs[k]] = stored_component(c, k);
   }
 
 
+  template <int dim>
   void
-  ElasticStress::prepare_for_refinement()
+  ElasticStress<dim>::prepare_for_refinement()
   {
     carrier.prepare(dofs, current);
   }
 
 
+  template <int dim>
   void
-  ElasticStress::finish_refinement()
+  ElasticStress<dim>::finish_refinement()
   {
     setup_dofs(stokes_quadrature);
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
@@ -833,44 +856,50 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  ElasticStress::prepare_for_checkpoint()
+  ElasticStress<dim>::prepare_for_checkpoint()
   {
     carrier.prepare_checkpoint(dofs, current);
   }
 
 
+  template <int dim>
   void
-  ElasticStress::checkpoint_written()
+  ElasticStress<dim>::checkpoint_written()
   {
     carrier.release();
   }
 
 
+  template <int dim>
   double
-  ElasticStress::error_estimate() const
+  ElasticStress<dim>::error_estimate() const
   {
     return step_error;
   }
 
 
+  template <int dim>
   void
-  ElasticStress::restore_old()
+  ElasticStress<dim>::restore_old()
   {
     current = old;
   }
 
 
+  template <int dim>
   void
-  ElasticStress::advance_time()
+  ElasticStress<dim>::advance_time()
   {
     old              = current;
     transfer_repairs = 0;
   }
 
 
+  template <int dim>
   double
-  ElasticStress::min_eigenvalue() const
+  ElasticStress<dim>::min_eigenvalue() const
   {
     double smallest = std::numeric_limits<double>::max();
     for (const Node &node : nodes)
@@ -879,45 +908,54 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   unsigned int
-  ElasticStress::n_positivity_fixes() const
+  ElasticStress<dim>::n_positivity_fixes() const
   {
     return positivity_fixes;
   }
 
 
+  template <int dim>
   unsigned int
-  ElasticStress::n_positivity_repairs() const
+  ElasticStress<dim>::n_positivity_repairs() const
   {
     return transfer_repairs + constraint_repairs;
   }
 
 
+  template <int dim>
   unsigned int
-  ElasticStress::n_remote_feet() const
+  ElasticStress<dim>::n_remote_feet() const
   {
     return remote_feet;
   }
 
 
+  template <int dim>
   void
-  ElasticStress::add_output(DataOut<dim> &data_out, const VolumeFraction &volume_fraction)
+  ElasticStress<dim>::add_output(DataOut<dim> &data_out, const VolumeFraction<dim> &volume_fraction)
   {
-    tau_postprocessor = std::make_unique<StressPostprocessor>(*this, volume_fraction);
+    tau_postprocessor = std::make_unique<StressPostprocessor<dim>>(*this, volume_fraction);
     data_out.add_data_vector(dofs, current, *tau_postprocessor);
   }
 
 
+  template <int dim>
   const DoFHandler<dim> &
-  ElasticStress::dof_handler() const
+  ElasticStress<dim>::dof_handler() const
   {
     return dofs;
   }
 
 
+  template <int dim>
   const TrilinosWrappers::MPI::Vector &
-  ElasticStress::solution() const
+  ElasticStress<dim>::solution() const
   {
     return current;
   }
+
+
+  VISCOFILM_INSTANTIATE(ElasticStress)
 } // namespace viscofilm

@@ -12,11 +12,12 @@
 
 namespace viscofilm
 {
+  template <int dim>
   void
-  Verification::declare_parameters(ParameterHandler &prm)
+  Verification<dim>::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Verification");
-    ParsedExpression::declare(prm,
+    ParsedExpression<dim>::declare(prm,
                               "Body force",
                               zero_expression(dim),
                               "Body force \"fx; fy\" (3D: \"fx; fy; fz\") "
@@ -46,15 +47,16 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  Verification::parse_parameters(ParameterHandler &prm)
+  Verification<dim>::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Verification");
     const std::string constants = prm.get("Function constants");
     body_force.parse(prm.get("Body force"),
                      constants,
                      "Verification/Body force");
-    const auto optional_expression = [&](std::optional<ParsedExpression> &target,
+    const auto optional_expression = [&](std::optional<ParsedExpression<dim>> &target,
                                          const std::string &name,
                                          const unsigned int n_components) {
       target.reset();
@@ -65,14 +67,15 @@ namespace viscofilm
         }
     };
     optional_expression(exact_solution, "Exact solution", dim + 1);
-    optional_expression(exact_stress, "Exact stress", n_symmetric_components);
+    optional_expression(exact_stress, "Exact stress", n_symmetric_components<dim>);
     optional_expression(exact_volume_fraction, "Exact volume fraction", 1);
     prm.leave_subsection();
   }
 
 
+  template <int dim>
   std::pair<double, double>
-  Verification::l2_errors(const StokesSolver &stokes,
+  Verification<dim>::l2_errors(const StokesSolver<dim> &stokes,
                           const double        time,
                           const bool          pressure_up_to_constant) const
   {
@@ -118,6 +121,7 @@ namespace viscofilm
   namespace
   {
     /// ‖u_h − (f + offset)‖_L2 over all components of a field.
+    template <int dim>
     double
     field_l2_error(const DoFHandler<dim> &                dof_handler,
                    const TrilinosWrappers::MPI::Vector &solution,
@@ -151,9 +155,10 @@ namespace viscofilm
   } // namespace
 
 
+  template <int dim>
   double
-  Verification::stress_l2_error(const ElasticStress & stress,
-                                const VolumeFraction &volume_fraction,
+  Verification<dim>::stress_l2_error(const ElasticStress<dim> & stress,
+                                const VolumeFraction<dim> &volume_fraction,
                                 const double          time) const
   {
     FunctionParser<dim> &exact = exact_stress->function();
@@ -165,9 +170,9 @@ namespace viscofilm
                           update_values | update_quadrature_points | update_JxW_values);
     FEValues<dim> phi_values(volume_fraction.dof_handler().get_fe(), quadrature, update_values);
     std::vector<Vector<double>> conformation(quadrature.size(),
-                                             Vector<double>(n_symmetric_components));
+                                             Vector<double>(n_symmetric_components<dim>));
     std::vector<Vector<double>> reference(quadrature.size(),
-                                          Vector<double>(n_symmetric_components));
+                                          Vector<double>(n_symmetric_components<dim>));
     std::vector<double>         phi(quadrature.size());
     double                      sum = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -182,7 +187,7 @@ namespace viscofilm
             {
               const SymmetricTensor<2, dim> tau = stress.stress_of(conformation[q], phi[q]);
               double squared = 0;
-              for (unsigned int k = 0; k < n_symmetric_components; ++k)
+              for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
                 squared += std::pow(stored_component(tau, k) - reference[q][k], 2);
               sum += squared * fe_values.JxW(q);
             }
@@ -191,8 +196,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   double
-  Verification::volume_fraction_l2_error(const VolumeFraction &volume_fraction,
+  Verification<dim>::volume_fraction_l2_error(const VolumeFraction<dim> &volume_fraction,
                                          const double          time) const
   {
     return field_l2_error(volume_fraction.dof_handler(),
@@ -201,4 +207,7 @@ namespace viscofilm
                           time,
                           {0.0});
   }
+
+
+  VISCOFILM_INSTANTIATE(Verification)
 } // namespace viscofilm

@@ -26,8 +26,9 @@
 
 namespace viscofilm
 {
+  template <int dim>
   void
-  VolumeFraction::Parameters::declare_parameters(ParameterHandler &prm)
+  VolumeFraction<dim>::Parameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Stabilization");
     prm.declare_entry("Volume fraction scheme",
@@ -56,8 +57,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  VolumeFraction::Parameters::parse_parameters(ParameterHandler &prm)
+  VolumeFraction<dim>::Parameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Stabilization");
     bounded       = (prm.get("Volume fraction scheme") == "semi-Lagrangian");
@@ -67,10 +69,11 @@ namespace viscofilm
   }
 
 
-  VolumeFraction::VolumeFraction(
+  template <int dim>
+  VolumeFraction<dim>::VolumeFraction(
     const parallel::distributed::Triangulation<dim> &triangulation,
     const Parameters &                             parameters,
-    const BoundaryConditions &                     boundary_conditions,
+    const BoundaryConditions<dim> &                     boundary_conditions,
     const std::string &                            name,
     const bool                                     inflow_from_boundaries)
     : parameters(parameters)
@@ -83,8 +86,9 @@ namespace viscofilm
   {}
 
 
+  template <int dim>
   void
-  VolumeFraction::setup_dofs()
+  VolumeFraction<dim>::setup_dofs()
   {
     dofs.distribute_dofs(fe);
     DoFTools::extract_locally_relevant_dofs(dofs, locally_relevant_dofs);
@@ -115,15 +119,17 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   double
-  VolumeFraction::inflow_value(const types::boundary_id id) const
+  VolumeFraction<dim>::inflow_value(const types::boundary_id id) const
   {
     return inflow_from_boundaries ? boundary_conditions.boundary(id).volume_fraction : 0.0;
   }
 
 
+  template <int dim>
   void
-  VolumeFraction::make_constraints(const StokesSolver *stokes)
+  VolumeFraction<dim>::make_constraints(const StokesSolver<dim> *stokes)
   {
     constraints.clear();
     constraints.reinit(locally_relevant_dofs);
@@ -147,7 +153,7 @@ namespace viscofilm
             for (const unsigned int f : cell->face_indices())
               if (cell->face(f)->at_boundary() &&
                   boundary_conditions.boundary(cell->face(f)->boundary_id()).type !=
-                    BoundaryConditions::Type::periodic)
+                    BoundaryConditions<dim>::Type::periodic)
                 {
                   stokes_face.reinit(cell_of(stokes->dof_handler(), cell), f);
                   stokes_face[velocities].get_function_values(stokes->solution(),
@@ -195,9 +201,10 @@ namespace viscofilm
   } // namespace
 
 
+  template <int dim>
   unsigned int
-  VolumeFraction::advance(const StokesSolver &stokes,
-                          DepartureFeet &     feet,
+  VolumeFraction<dim>::advance(const StokesSolver<dim> &stokes,
+                          DepartureFeet<dim> &     feet,
                           const double        diffusion,
                           const double        time_step,
                           const unsigned int  order,
@@ -241,22 +248,25 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   double
-  VolumeFraction::error_estimate() const
+  VolumeFraction<dim>::error_estimate() const
   {
     return last_error_estimate;
   }
 
 
+  template <int dim>
   void
-  VolumeFraction::restore_old()
+  VolumeFraction<dim>::restore_old()
   {
     current_solution = old_solution;
   }
 
 
+  template <int dim>
   void
-  VolumeFraction::soften(const double       diffusion,
+  VolumeFraction<dim>::soften(const double       diffusion,
                          const unsigned int n_steps,
                          const double       time_step)
   {
@@ -283,8 +293,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   unsigned int
-  VolumeFraction::gls_step(const StokesSolver *stokes,
+  VolumeFraction<dim>::gls_step(const StokesSolver<dim> *stokes,
                        const double        diffusion,
                        const double        time_step)
   {
@@ -369,8 +380,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   unsigned int
-  VolumeFraction::solve()
+  VolumeFraction<dim>::solve()
   {
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
                                               mpi_communicator);
@@ -397,10 +409,11 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  VolumeFraction::semi_lagrangian_step(const DoFHandler<dim> &stokes_dofs,
+  VolumeFraction<dim>::semi_lagrangian_step(const DoFHandler<dim> &stokes_dofs,
                                        const TrilinosWrappers::MPI::BlockVector &velocity,
-                                       DepartureFeet &                           feet,
+                                       DepartureFeet<dim> &                           feet,
                                        const double                   time_step,
                                        TrilinosWrappers::MPI::Vector &advected,
                                        TrilinosWrappers::MPI::Vector &lower,
@@ -411,7 +424,7 @@ namespace viscofilm
     const std::vector<Point<dim>> &                       unit_support = fe.get_unit_support_points();
     std::vector<bool>                                   seen(owned.n_elements());
     std::vector<Point<dim>>                               nodes;
-    std::vector<Triangulation<dim>::active_cell_iterator> cells;
+    std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
     std::vector<types::global_dof_index>                node_dofs, local_dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -432,8 +445,8 @@ namespace viscofilm
 
     feet.compute(nodes, cells, stokes_dofs, velocity, time_step);
     std::vector<double> cell_values(fe.n_dofs_per_cell());
-    auto                at_feet = feet.at_feet().evaluate<3>(
-      [&](const Triangulation<dim>::active_cell_iterator &cell,
+    auto                at_feet = feet.at_feet().template evaluate<3>(
+      [&](const typename Triangulation<dim>::active_cell_iterator &cell,
           const ArrayView<const Point<dim>> &             unit_points,
           const ArrayView<std::array<double, 3>> &      values) {
         cell_of(dofs, cell)->get_dof_values(current_solution, cell_values.begin(), cell_values.end());
@@ -466,8 +479,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   unsigned int
-  VolumeFraction::bounded_diffusion_step(const double diffusion, const double time_step)
+  VolumeFraction<dim>::bounded_diffusion_step(const double diffusion, const double time_step)
   {
     system_matrix = 0;
     system_rhs    = 0;
@@ -487,7 +501,7 @@ namespace viscofilm
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          values.reinit(static_cast<Triangulation<dim>::cell_iterator>(cell));
+          values.reinit(static_cast<typename Triangulation<dim>::cell_iterator>(cell));
           cell->get_dof_values(current_solution, phi_old.begin(), phi_old.end());
           cell_matrix = 0;
           cell_rhs    = 0;
@@ -532,8 +546,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  VolumeFraction::bound_hanging_nodes(TrilinosWrappers::MPI::Vector &      distributed,
+  VolumeFraction<dim>::bound_hanging_nodes(TrilinosWrappers::MPI::Vector &      distributed,
                                       const TrilinosWrappers::MPI::Vector &lower,
                                       const TrilinosWrappers::MPI::Vector &upper) const
   {
@@ -587,8 +602,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  VolumeFraction::restore_mass(const double                         mass,
+  VolumeFraction<dim>::restore_mass(const double                         mass,
                                const TrilinosWrappers::MPI::Vector &lower,
                                const TrilinosWrappers::MPI::Vector &upper)
   {
@@ -635,8 +651,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   double
-  VolumeFraction::boundary_flux(const DoFHandler<dim> &                     stokes_dofs,
+  VolumeFraction<dim>::boundary_flux(const DoFHandler<dim> &                     stokes_dofs,
                                 const TrilinosWrappers::MPI::BlockVector &velocity_field) const
   {
     const QGauss<dim - 1> quadrature(fe.degree + 1);
@@ -665,8 +682,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  VolumeFraction::interpolate(const Function<dim> &initial)
+  VolumeFraction<dim>::interpolate(const Function<dim> &initial)
   {
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
                                               mpi_communicator);
@@ -675,8 +693,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  VolumeFraction::set(TrilinosWrappers::MPI::Vector &distributed)
+  VolumeFraction<dim>::set(TrilinosWrappers::MPI::Vector &distributed)
   {
     constraints.distribute(distributed);
     if (parameters.bounded)
@@ -685,15 +704,17 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  VolumeFraction::add_output(DataOut<dim> &data_out) const
+  VolumeFraction<dim>::add_output(DataOut<dim> &data_out) const
   {
     data_out.add_data_vector(dofs, current_solution, name);
   }
 
 
+  template <int dim>
   void
-  VolumeFraction::prepare_for_refinement()
+  VolumeFraction<dim>::prepare_for_refinement()
   {
     if (parameters.bounded)
       {
@@ -704,8 +725,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  VolumeFraction::finish_refinement()
+  VolumeFraction<dim>::finish_refinement()
   {
     setup_dofs();
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
@@ -731,36 +753,41 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   void
-  VolumeFraction::prepare_for_checkpoint()
+  VolumeFraction<dim>::prepare_for_checkpoint()
   {
     carrier.prepare_checkpoint(dofs, current_solution);
   }
 
 
+  template <int dim>
   void
-  VolumeFraction::checkpoint_written()
+  VolumeFraction<dim>::checkpoint_written()
   {
     carrier.release();
   }
 
 
+  template <int dim>
   const DoFHandler<dim> &
-  VolumeFraction::dof_handler() const
+  VolumeFraction<dim>::dof_handler() const
   {
     return dofs;
   }
 
 
+  template <int dim>
   const TrilinosWrappers::MPI::Vector &
-  VolumeFraction::solution() const
+  VolumeFraction<dim>::solution() const
   {
     return current_solution;
   }
 
 
+  template <int dim>
   double
-  VolumeFraction::integral() const
+  VolumeFraction<dim>::integral() const
   {
     const QGauss<dim>     quadrature(fe.degree + 1);
     FEValues<dim>         fe_values(fe, quadrature, update_values | update_JxW_values);
@@ -778,8 +805,9 @@ namespace viscofilm
   }
 
 
+  template <int dim>
   std::pair<double, double>
-  VolumeFraction::range() const
+  VolumeFraction<dim>::range() const
   {
     double low  = std::numeric_limits<double>::max();
     double high = std::numeric_limits<double>::lowest();
@@ -791,4 +819,7 @@ namespace viscofilm
     return {Utilities::MPI::min(low, mpi_communicator),
             Utilities::MPI::max(high, mpi_communicator)};
   }
+
+
+  VISCOFILM_INSTANTIATE(VolumeFraction)
 } // namespace viscofilm

@@ -26,6 +26,7 @@ namespace viscofilm
   /// round-off is no inflow boundary.
   constexpr double inflow_threshold = 1e-8;
 
+  template <int dim>
   class BoundaryConditions
   {
   public:
@@ -45,13 +46,13 @@ namespace viscofilm
       std::string        name;
       types::boundary_id id   = 0;
       Type               type = Type::no_slip;
-      ParsedExpression   velocity{dim};
+      ParsedExpression<dim> velocity{dim};
       double             volume_fraction = 0; // φ where the flow enters
       /// τ where the flow enters (stored components, dimension.h), 0: the
       /// relaxed state.
-      ParsedExpression stress{n_symmetric_components};
+      ParsedExpression<dim> stress{n_symmetric_components<dim>};
       /// The prescribed normal traction −P n (pressure; outflow: P = 0).
-      ParsedExpression pressure{1};
+      ParsedExpression<dim> pressure{1};
       /// The id of the boundary a periodic one is identified with.
       types::boundary_id periodic_partner = 0;
       /// The coordinate axis the normal is parallel to; -1: none.
@@ -61,10 +62,10 @@ namespace viscofilm
     /// Declare Boundary conditions/<name> for each of @p boundaries.
     static void
     declare_parameters(ParameterHandler &                          prm,
-                       const std::vector<Geometry::NamedBoundary> &boundaries);
+                       const std::vector<typename Geometry<dim>::NamedBoundary> &boundaries);
     void
     parse_parameters(ParameterHandler &                          prm,
-                     const std::vector<Geometry::NamedBoundary> &boundaries);
+                     const std::vector<typename Geometry<dim>::NamedBoundary> &boundaries);
 
     /// Add the velocity constraints at time @p time to @p constraints for a
     /// Stokes element whose first dim components are the velocity.

@@ -28,9 +28,9 @@ namespace viscofilm
 
   /// What one cell computes at the reference points of the requested points
   /// that lie in it (one value of n numbers per point).
-  template <int n>
+  template <int dim, int n>
   using CellEvaluation =
-    std::function<void(const Triangulation<dim>::active_cell_iterator &cell,
+    std::function<void(const typename Triangulation<dim>::active_cell_iterator &cell,
                        const ArrayView<const Point<dim>> &         unit_points,
                        const ArrayView<std::array<double, n>> &  values)>;
 
@@ -57,6 +57,7 @@ namespace viscofilm
    * translated by the period (the point becomes its periodic image in the
    * mesh). No description of the domain is needed, only its cells.
    */
+  template <int dim>
   class PointEvaluator
   {
   public:
@@ -69,7 +70,7 @@ namespace viscofilm
     struct Trace
     {
       /// The cell reached, and the point's reference coordinates there.
-      Triangulation<dim>::active_cell_iterator cell;
+      typename Triangulation<dim>::active_cell_iterator cell;
       Point<dim>                               unit_point;
       /// The target, translated across the periodic faces crossed, or the
       /// crossing with the boundary face @p cut_face of @p cell.
@@ -84,7 +85,7 @@ namespace viscofilm
     /// cell to cell across the faces it crosses (exit face from the
     /// reference coordinates).
     Trace
-    trace(Triangulation<dim>::active_cell_iterator cell,
+    trace(typename Triangulation<dim>::active_cell_iterator cell,
           const Point<dim> &                       from,
           const Point<dim> &                       to) const;
 
@@ -94,7 +95,7 @@ namespace viscofilm
     void
     reinit(const std::vector<Point<dim>> &                         origins,
            const std::vector<Point<dim>> &                         points,
-           std::vector<Triangulation<dim>::active_cell_iterator> &hints);
+           std::vector<typename Triangulation<dim>::active_cell_iterator> &hints);
 
     /// The points of the last reinit() where they were evaluated: cut at
     /// the boundary, translated across periodic faces.
@@ -105,7 +106,7 @@ namespace viscofilm
     /// Collective; throws if a point lies in no cell of the mesh.
     template <int n>
     std::vector<std::array<double, n>>
-    evaluate(const CellEvaluation<n> &evaluate_cell) const;
+    evaluate(const CellEvaluation<dim, n> &evaluate_cell) const;
 
     /// Points of the last reinit() that went to another rank, on this rank.
     unsigned int
@@ -114,7 +115,7 @@ namespace viscofilm
   private:
     struct LocalPoint
     {
-      Triangulation<dim>::active_cell_iterator cell;
+      typename Triangulation<dim>::active_cell_iterator cell;
       Point<dim>                               unit_point;
       unsigned int                           point; // index in reinit()'s points
     };
@@ -130,15 +131,18 @@ namespace viscofilm
   };
 
   /// u and ∇u at a point: u_d at [d], ∂u_d/∂x_e at [dim + dim d + e].
+  template <int dim>
   constexpr unsigned int n_velocity_values = dim + dim * dim;
 
-  /// u and ∇u (n_velocity_values) at the points of @p points, from the
+  /// u and ∇u (n_velocity_values<dim>) at the points of @p points, from the
   /// velocity part of a (ghosted) Stokes solution.
-  std::vector<std::array<double, n_velocity_values>>
-  evaluate_velocity(const PointEvaluator &                    points,
+  template <int dim>
+  std::vector<std::array<double, n_velocity_values<dim>>>
+  evaluate_velocity(const PointEvaluator<dim> &                    points,
                     const DoFHandler<dim> &                     stokes_dofs,
                     const TrilinosWrappers::MPI::BlockVector &stokes_solution);
 
+  template <int dim>
   class DepartureFeet
   {
   public:
@@ -180,13 +184,13 @@ namespace viscofilm
      */
     std::vector<Point<dim>>
     compute(const std::vector<Point<dim>> &                              points,
-            const std::vector<Triangulation<dim>::active_cell_iterator> &cells,
+            const std::vector<typename Triangulation<dim>::active_cell_iterator> &cells,
             const DoFHandler<dim> &                                 stokes_dofs,
             const TrilinosWrappers::MPI::BlockVector &            stokes_solution,
             const double                                          time_step);
 
     /// Located at the feet of the last compute().
-    const PointEvaluator &
+    const PointEvaluator<dim> &
     at_feet() const;
 
     /// Per point of the last compute(): the boundary id where its
@@ -207,13 +211,13 @@ namespace viscofilm
   private:
     /// Is @p y in a cell sharing the point @p x of @p cell?
     bool
-    inside_patch(const Triangulation<dim>::active_cell_iterator &cell,
+    inside_patch(const typename Triangulation<dim>::active_cell_iterator &cell,
                  const Point<dim> &                              x,
                  const Point<dim> &                              y) const;
 
     const Parameters &                             parameters;
     const parallel::distributed::Triangulation<dim> &triangulation;
-    PointEvaluator                                 evaluator; // midpoints, then feet
+    PointEvaluator<dim>                                 evaluator; // midpoints, then feet
     Statistics                                     accumulated;
     std::vector<types::boundary_id>                inflow;
   };

@@ -21,11 +21,15 @@ namespace viscofilm
 {
   using namespace dealii;
 
+  template <int dim>
   class StokesSolver;
+  template <int dim>
   class ElasticStress;
   class CsvFile;
+  template <int dim>
   class DepartureFeet;
 
+  template <int dim>
   class Detachment
   {
   public:
@@ -42,7 +46,7 @@ namespace viscofilm
       declare_parameters(ParameterHandler &prm);
       /// Release unattached needs @p loads' Walls.
       void
-      parse_parameters(ParameterHandler &prm, const BiofilmLoads::Parameters &loads);
+      parse_parameters(ParameterHandler &prm, const typename BiofilmLoads<dim>::Parameters &loads);
 
       bool      enabled   = false;
       Criterion criterion = Criterion::von_mises;
@@ -64,14 +68,14 @@ namespace viscofilm
     /// fraction and Walls. φ_d lives on @p triangulation with φ's element
     /// and transport scheme (@p transport).
     Detachment(const Parameters &                             parameters,
-               const BiofilmLoads::Parameters &               loads,
+               const typename BiofilmLoads<dim>::Parameters &               loads,
                const Model &                                  model,
                const parallel::distributed::Triangulation<dim> &triangulation,
-               const VolumeFraction::Parameters &             transport,
-               const BoundaryConditions &                     boundary_conditions,
-               const StokesSolver &                           stokes,
-               VolumeFraction &                               volume_fraction,
-               const ElasticStress &                          stress);
+               const typename VolumeFraction<dim>::Parameters &             transport,
+               const BoundaryConditions<dim> &                     boundary_conditions,
+               const StokesSolver<dim> &                           stokes,
+               VolumeFraction<dim> &                               volume_fraction,
+               const ElasticStress<dim> &                          stress);
 
     /// After VolumeFraction::setup_dofs(): φ_d (0) and the clocks of the
     /// duration.
@@ -85,7 +89,7 @@ namespace viscofilm
     /// unattached, at those connected to no wall; φ_d gains what φ lost.
     /// Collective.
     void
-    release(DepartureFeet &feet, const double time_step, const unsigned int order);
+    release(DepartureFeet<dim> &feet, const double time_step, const unsigned int order);
 
     /// Columns detached_mass (this step), detached_by_connectivity (the part
     /// of it cut off from the walls), detached_mass_total,
@@ -152,20 +156,20 @@ namespace viscofilm
            const std::vector<Point<dim>> &      released_nodes);
 
     const Parameters &              parameters;
-    const BiofilmLoads::Parameters &loads;
+    const typename BiofilmLoads<dim>::Parameters &loads;
     const Model &                   model;
-    const StokesSolver &            stokes;
-    VolumeFraction &                volume_fraction;
-    const ElasticStress &           stress;
-    const BoundaryConditions &      boundary_conditions;
+    const StokesSolver<dim> &            stokes;
+    VolumeFraction<dim> &                volume_fraction;
+    const ElasticStress<dim> &           stress;
+    const BoundaryConditions<dim> &      boundary_conditions;
 
     /// φ_d: the detached biofilm, a passive tracer (doc/detachment.md).
-    VolumeFraction detached;
+    VolumeFraction<dim> detached;
 
     /// Per node of φ: how long the load has exceeded the strength (ghosted;
     /// only with Duration > 0).
     TrilinosWrappers::MPI::Vector                  clock;
-    SolutionCarrier<TrilinosWrappers::MPI::Vector> carrier;
+    SolutionCarrier<dim, TrilinosWrappers::MPI::Vector> carrier;
 
     double     step_mass         = 0;
     double     connectivity_mass = 0; // the part of step_mass cut off

@@ -1,7 +1,7 @@
-// The space dimension, and how a symmetric dim×dim tensor (c, τ) is stored as
-// a list of components. The code is written for `dim`, compiled once for 2
-// and once for 3 (the programs viscofilm and viscofilm-3d); a later step
-// turns this constant into a template parameter (issue 12).
+// How a symmetric dim×dim tensor (c, τ) is stored as a list of components.
+// Every class is a template on the space dimension dim, instantiated for 2
+// and 3 (VISCOFILM_INSTANTIATE at the end of each .cc); main() reads
+// Geometry/Dimension and runs Problem<2> or Problem<3>.
 #ifndef viscofilm_dimension_h
 #define viscofilm_dimension_h
 
@@ -13,17 +13,14 @@
 
 namespace viscofilm
 {
-#ifndef VISCOFILM_DIMENSION
-#  error "compile with VISCOFILM_DIMENSION=2 or 3 (CMakeLists.txt does, once for each)"
-#endif
-  constexpr int dim = VISCOFILM_DIMENSION;
-
   /// Independent components of a symmetric dim×dim tensor (c, τ).
+  template <int dim>
   constexpr unsigned int n_symmetric_components = dim * (dim + 1) / 2;
 
   /// Row and column of the stored component @p k. The order is the upper
   /// triangle row by row: (xx, xy, yy) in 2D, (xx, xy, xz, yy, yz, zz) in 3D
   /// (c's FE components, the Stress expressions, the tau_* output fields).
+  template <int dim>
   inline std::pair<unsigned int, unsigned int>
   symmetric_component(const unsigned int k)
   {
@@ -34,36 +31,39 @@ namespace viscofilm
   }
 
   /// "xx", "xy", ... of the stored component @p k.
+  template <int dim>
   inline std::string
   symmetric_component_name(const unsigned int k)
   {
-    const auto [i, j] = symmetric_component(k);
+    const auto [i, j] = symmetric_component<dim>(k);
     return {char('x' + i), char('x' + j)};
   }
 
   /// The stored component @p k of @p t.
+  template <int dim>
   inline double
   stored_component(const dealii::SymmetricTensor<2, dim> &t, const unsigned int k)
   {
-    const auto [i, j] = symmetric_component(k);
+    const auto [i, j] = symmetric_component<dim>(k);
     return t[i][j];
   }
 
   /// The tensor whose stored components are v[0], ..., v[n_symmetric_components − 1].
-  template <class Values>
+  template <int dim, class Values>
   dealii::SymmetricTensor<2, dim>
   symmetric_tensor(const Values &v)
   {
     dealii::SymmetricTensor<2, dim> t;
-    for (unsigned int k = 0; k < n_symmetric_components; ++k)
+    for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
       {
-        const auto [i, j] = symmetric_component(k);
+        const auto [i, j] = symmetric_component<dim>(k);
         t[i][j]           = v[k];
       }
     return t;
   }
 
   /// The smallest eigenvalue of a symmetric tensor (c's positivity).
+  template <int dim>
   inline double
   smallest_eigenvalue(const dealii::SymmetricTensor<2, dim> &t)
   {
@@ -78,5 +78,13 @@ namespace viscofilm
       return dealii::eigenvalues(t)[dim - 1]; // in descending order
   }
 } // namespace viscofilm
+
+/// The explicit instantiations at the end of each .cc file: a class
+/// template's members defined there for dim = 2 and 3, and any function
+/// template through a macro INSTANTIATE(dim) of the file.
+#define VISCOFILM_INSTANTIATE(Class) \
+  template class Class<2>;           \
+  template class Class<3>;
+#define VISCOFILM_FOR_EACH_DIM(Macro) Macro(2) Macro(3)
 
 #endif

@@ -13,7 +13,7 @@ namespace viscofilm
 
   /// The active cell of @p dofs that is @p cell (an iterator of the
   /// triangulation or of any DoFHandler on it).
-  template <class CellIterator>
+  template <int dim, class CellIterator>
   typename DoFHandler<dim>::active_cell_iterator
   cell_of(const DoFHandler<dim> &dofs, const CellIterator &cell)
   {

@@ -35,6 +35,7 @@ namespace viscofilm
     constexpr types::boundary_id back     = 6; // z = max (3D)
   } // namespace BoundaryId
 
+  template <int dim>
   class Geometry
   {
   public:

@@ -89,6 +89,7 @@ namespace viscofilm
    * intensities become φ; parse_parameters() reads the file and checks that
    * it covers the biofilm in the domain.
    */
+  template <int dim>
   class BiofilmImage
   {
   public:

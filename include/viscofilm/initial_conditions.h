@@ -17,6 +17,7 @@ namespace viscofilm
 {
   using namespace dealii;
 
+  template <int dim>
   class InitialConditions
   {
   public:
@@ -44,14 +45,14 @@ namespace viscofilm
     input_resolution() const;
 
     /// φ as an expression (Volume fraction not "image").
-    ParsedExpression volume_fraction{1};
+    ParsedExpression<dim> volume_fraction{1};
 
     /// Volume fraction = image: φ from the image.
     bool         from_image = false;
-    BiofilmImage image;
+    BiofilmImage<dim> image;
 
     /// τ at t = 0, its stored components (dimension.h) (the thesis: 0).
-    ParsedExpression stress{n_symmetric_components};
+    ParsedExpression<dim> stress{n_symmetric_components<dim>};
 
     unsigned int softening_steps     = 0;
     double       softening_time_step = 0.03125;

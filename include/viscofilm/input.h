@@ -37,13 +37,14 @@ namespace viscofilm
   void
   check_input(const bool condition, const std::string &message);
 
-  /// "x, y" (n = 2) or "x, y, z" (n = 3) -> Point<n>. @p parameter names the
+  /// "x, y" (dim = 2) or "x, y, z" (dim = 3) -> Point<dim>. @p parameter names the
   /// entry in error messages.
-  template <int n = dim>
-  Point<n>
+  template <int dim>
+  Point<dim>
   parse_point(const std::string &text, const std::string &parameter);
 
   /// "x1, y1; x2, y2; ..." (dim coordinates each) -> points (empty text: no points).
+  template <int dim>
   std::vector<Point<dim>>
   parse_point_list(const std::string &text, const std::string &parameter);
 
@@ -53,6 +54,7 @@ namespace viscofilm
    * expression is evaluated once when parsed, so a typo is reported with the
    * parameter's name before the run starts, not in the middle of it.
    */
+  template <int dim>
   class ParsedExpression
   {
   public:
@@ -86,7 +88,7 @@ namespace viscofilm
   };
 
   /// "0; 0; …": the zero expression with @p n_components components, the
-  /// default of a vector (dim) or stress (n_symmetric_components) entry.
+  /// default of a vector (dim) or stress (n_symmetric_components<dim>) entry.
   std::string
   zero_expression(const unsigned int n_components);
 

@@ -24,12 +24,17 @@ namespace viscofilm
 {
   using namespace dealii;
 
+  template <int dim>
   class StokesSolver;
+  template <int dim>
   class VolumeFraction;
+  template <int dim>
   class ElasticStress;
   class CsvFile;
+  template <int dim>
   class BoundaryConditions;
 
+  template <int dim>
   class BiofilmLoads
   {
   public:
@@ -54,7 +59,7 @@ namespace viscofilm
       /// Boundary names are resolved with @p boundary_conditions.
       void
       parse_parameters(ParameterHandler &        prm,
-                       const BoundaryConditions &boundary_conditions);
+                       const BoundaryConditions<dim> &boundary_conditions);
 
       /// σ_vm above which the biofilm counts as prone to detach; the
       /// strength of the release (Detachment).
@@ -78,9 +83,9 @@ namespace viscofilm
 
     BiofilmLoads(const Parameters &    parameters,
                  const Model &         model,
-                 const StokesSolver &  stokes,
-                 const VolumeFraction &volume_fraction,
-                 const ElasticStress & stress);
+                 const StokesSolver<dim> &  stokes,
+                 const VolumeFraction<dim> &volume_fraction,
+                 const ElasticStress<dim> & stress);
 
     /// Columns wall_shear_stress_mean/max, interface_traction_mean/max,
     /// von_mises_max, detachment_area and force_x_<name>, force_y_<name>
@@ -105,9 +110,9 @@ namespace viscofilm
 
     const Parameters &    parameters;
     const Model &         model;
-    const StokesSolver &  stokes;
-    const VolumeFraction &volume_fraction;
-    const ElasticStress & stress;
+    const StokesSolver<dim> &  stokes;
+    const VolumeFraction<dim> &volume_fraction;
+    const ElasticStress<dim> & stress;
 
     std::unique_ptr<DataPostprocessor<dim>> postprocessor;
   };

@@ -22,9 +22,12 @@ namespace viscofilm
 {
   using namespace dealii;
 
+  template <int dim>
   class StokesSolver;
+  template <int dim>
   class VolumeFraction;
 
+  template <int dim>
   class MeshRefinement
   {
   public:
@@ -52,8 +55,8 @@ namespace viscofilm
     /// the level bounds. Returns whether any cell was flagged (collective).
     bool
     flag_cells(parallel::distributed::Triangulation<dim> &triangulation,
-               const VolumeFraction &                   volume_fraction,
-               const StokesSolver &                     stokes,
+               const VolumeFraction<dim> &                volume_fraction,
+               const StokesSolver<dim> &                  stokes,
                const bool                               coarsen,
                const InitialInput *                     input = nullptr) const;
 
@@ -78,7 +81,7 @@ namespace viscofilm
    * it, and finish() (with nothing prepared) after load() and a new
    * distribution of the dofs.
    */
-  template <typename VectorType>
+  template <int dim, typename VectorType>
   class SolutionCarrier
   {
   public:

@@ -78,6 +78,7 @@ namespace viscofilm
 
     /// τ = G(φ) (c − c_rest I) (thesis eq. 2.39 with G = 1; phases: G =
     /// ηp(φ)/(a λ(φ)), 0 in a Newtonian phase).
+    template <int dim>
     SymmetricTensor<2, dim>
     stress(const SymmetricTensor<2, dim> &conformation,
            const double                   volume_fraction) const;
@@ -87,6 +88,7 @@ namespace viscofilm
     stress_modulus(const double volume_fraction) const;
 
     /// The inverse of stress(): c of a given τ (c_rest I where G = 0).
+    template <int dim>
     SymmetricTensor<2, dim>
     conformation(const SymmetricTensor<2, dim> &stress,
                  const double                   volume_fraction) const;
@@ -105,6 +107,7 @@ namespace viscofilm
     /// answers a velocity gradient, s G w k a c_max / (w + k α) with c_max
     /// the largest eigenvalue of the conformation of @p stress, at least
     /// c_rest (thesis at rest: φ² ηp k/(λφ + k); phases: ηp k/(λ + k)).
+    template <int dim>
     double
     elastic_viscosity(const double                   volume_fraction,
                       const double                   k,

@@ -24,8 +24,11 @@ namespace viscofilm
 {
   using namespace dealii;
 
+  template <int dim>
   class StokesSolver;
+  template <int dim>
   class ElasticStress;
+  template <int dim>
   class VolumeFraction;
 
   /**
@@ -58,6 +61,7 @@ namespace viscofilm
   };
 
 
+  template <int dim>
   class Output
   {
   public:
@@ -109,9 +113,9 @@ namespace viscofilm
     void
     write_probes(const unsigned int    step,
                  const double          time,
-                 const StokesSolver &  stokes,
-                 const VolumeFraction &volume_fraction,
-                 const ElasticStress & stress);
+                 const StokesSolver<dim> &  stokes,
+                 const VolumeFraction<dim> &volume_fraction,
+                 const ElasticStress<dim> & stress);
 
     CsvFile &
     statistics();

@@ -25,34 +25,35 @@ namespace viscofilm
 {
   using namespace dealii;
 
+  template <int dim>
   struct Parameters
   {
     /// Declare every parameter; Boundary conditions has a subsection for
     /// each of @p boundaries (Geometry::boundaries() of the parsed mesh).
     static void
     declare_parameters(ParameterHandler &                          prm,
-                       const std::vector<Geometry::NamedBoundary> &boundaries);
+                       const std::vector<typename Geometry<dim>::NamedBoundary> &boundaries);
 
     /// Parse every subsection; throws ExcInput on inconsistent input.
     /// @p directory: that of the parameter file (Geometry/Mesh file).
     void
     parse_parameters(ParameterHandler &prm, const std::string &directory);
 
-    Geometry                 geometry;
-    MeshRefinement           mesh_refinement;
+    Geometry<dim>                 geometry;
+    MeshRefinement<dim>           mesh_refinement;
     TimeStepping             time_stepping;
     Model                    model;
-    BoundaryConditions       boundary_conditions;
-    InitialConditions        initial_conditions;
-    StokesSolver::Parameters stokes_solver;
-    ElasticStress::Parameters stress;
-    DepartureFeet::Parameters departure_feet;
-    VolumeFraction::Parameters stabilization;
-    BiofilmLoads::Parameters  detachment;
-    Detachment::Parameters    release;
-    Output::Parameters       output;
-    Verification             verification;
-    Checkpoint::Parameters   checkpointing;
+    BoundaryConditions<dim>       boundary_conditions;
+    InitialConditions<dim>        initial_conditions;
+    typename StokesSolver<dim>::Parameters stokes_solver;
+    typename ElasticStress<dim>::Parameters stress;
+    typename DepartureFeet<dim>::Parameters departure_feet;
+    typename VolumeFraction<dim>::Parameters stabilization;
+    typename BiofilmLoads<dim>::Parameters  detachment;
+    typename Detachment<dim>::Parameters    release;
+    typename Output<dim>::Parameters       output;
+    Verification<dim>             verification;
+    typename Checkpoint<dim>::Parameters   checkpointing;
   };
 } // namespace viscofilm
 

@@ -26,11 +26,12 @@ namespace viscofilm
 {
   using namespace dealii;
 
+  template <int dim>
   class Problem
   {
   public:
     /// @p prm is kept to write the parameters used next to the results.
-    Problem(Parameters &parameters, const ParameterHandler &prm, MPI_Comm comm);
+    Problem(Parameters<dim> &parameters, const ParameterHandler &prm, MPI_Comm comm);
 
     /// Run all time steps; throws with the step and time on failure.
     void
@@ -73,7 +74,7 @@ namespace viscofilm
     /// @p input: the initial φ the mesh must resolve between φ's nodes too.
     bool
     refine_mesh(const bool                            coarsen = true,
-                const MeshRefinement::InitialInput *input   = nullptr);
+                const typename MeshRefinement<dim>::InitialInput *input   = nullptr);
     /// After any change of the mesh: caches that depend on it.
     void
     mesh_changed();
@@ -81,7 +82,7 @@ namespace viscofilm
     void
     write_checkpoint(const unsigned int step, const double time);
     /// Load them; returns the state to continue from.
-    Checkpoint::State
+    typename Checkpoint<dim>::State
     resume_from_checkpoint();
     void
     set_initial_conditions();
@@ -105,7 +106,7 @@ namespace viscofilm
     void
     write_statistics(const unsigned int step, const double time, const StepReport &report);
 
-    Parameters &            parameters;
+    Parameters<dim> &            parameters;
     double                  time_step     = 0; // of the current step
     double                  step_cfl      = 0; // its max|u^n| k / Δx
     double                  min_cell_size = 0; // smallest cell edge
@@ -118,14 +119,14 @@ namespace viscofilm
     std::unique_ptr<TimerOutput> computing_timer;
 
     parallel::distributed::Triangulation<dim> triangulation;
-    StokesSolver                            stokes;
-    VolumeFraction                          volume_fraction;
-    ElasticStress                           stress;
-    DepartureFeet                           departure_feet;
-    BiofilmLoads                            loads;
-    Detachment                              detachment;
-    Output                                  output;
-    Checkpoint                              checkpoint;
+    StokesSolver<dim>                            stokes;
+    VolumeFraction<dim>                          volume_fraction;
+    ElasticStress<dim>                           stress;
+    DepartureFeet<dim>                           departure_feet;
+    BiofilmLoads<dim>                            loads;
+    Detachment<dim>                              detachment;
+    Output<dim>                                  output;
+    Checkpoint<dim>                              checkpoint;
   };
 } // namespace viscofilm
 

@@ -33,11 +33,13 @@ namespace viscofilm
 {
   using namespace dealii;
 
+  template <int dim>
   class StokesLinearSolver;
 
   /// The Stokes solve of a time step: its dofs and solutions, the assembly
   /// (stokes_assembly.cc), a linear-solver strategy per Method
   /// (stokes_linear_solver.h) and diagnostics (stokes_diagnostics.cc).
+  template <int dim>
   class StokesSolver
   {
   public:
@@ -123,7 +125,7 @@ namespace viscofilm
     /// stress term −(s(φ) τ, ∇v) on the right-hand side. An empty hook
     /// means τ = 0.
     using ElasticStress = std::function<void(
-      const DoFHandler<dim>::active_cell_iterator &cell,
+      const typename DoFHandler<dim>::active_cell_iterator &cell,
       const std::vector<double> &                volume_fraction,
       std::vector<SymmetricTensor<2, dim>> &       tau)>;
 
@@ -135,7 +137,7 @@ namespace viscofilm
       const DoFHandler<dim> *           volume_fraction_dof_handler;
       const TrilinosWrappers::MPI::Vector *volume_fraction;
       Function<dim> *                   body_force; // set_time() is called
-      ElasticStress                   elastic_stress;
+      ElasticStress                        elastic_stress;
     };
 
     /// @p order: Time stepping/Order (2: BDF2 for Res ∂u/∂t, and u^{n-1}
@@ -143,7 +145,7 @@ namespace viscofilm
     StokesSolver(const parallel::distributed::Triangulation<dim> &triangulation,
                  const Parameters &                             parameters,
                  const Model &                                  model,
-                 const BoundaryConditions &                     boundary_conditions,
+                 const BoundaryConditions<dim> &                     boundary_conditions,
                  const unsigned int                             order);
     ~StokesSolver();
 
@@ -165,7 +167,7 @@ namespace viscofilm
     /// at the feet over two steps (BDF2). Skipped when Res = 0. Records
     /// @p time_step as the length k_n of the step.
     void
-    trace_back(DepartureFeet &feet, const double time_step);
+    trace_back(DepartureFeet<dim> &feet, const double time_step);
 
     /// The solution at t_n + @p offset extrapolated linearly from u^{n-1} and
     /// u^n, u^n while there is no u^{n-1} (Order = 1, the first step); the
@@ -288,7 +290,7 @@ namespace viscofilm
     const parallel::distributed::Triangulation<dim> &triangulation;
     const Parameters &                             parameters;
     const Model &                                  model;
-    const BoundaryConditions &                     boundary_conditions;
+    const BoundaryConditions<dim> &                     boundary_conditions;
     const MPI_Comm                                 mpi_communicator;
 
     const FESystem<dim> fe;
@@ -312,13 +314,13 @@ namespace viscofilm
     std::vector<Tensor<1, dim>>          old_velocity_at_feet; // per owned cell and q
     std::vector<Tensor<1, dim>>        previous_velocity_at_feet; // u^{n-1}, BDF2
 
-    SolutionCarrier<TrilinosWrappers::MPI::BlockVector> carrier;
-    SolutionCarrier<TrilinosWrappers::MPI::BlockVector> previous_carrier; // Order = 2
+    SolutionCarrier<dim, TrilinosWrappers::MPI::BlockVector> carrier;
+    SolutionCarrier<dim, TrilinosWrappers::MPI::BlockVector> previous_carrier; // Order = 2
 
     bool matrix_is_current = false;
 
     /// The matrices, preconditioners and solver (Method).
-    std::unique_ptr<StokesLinearSolver> linear_solver;
+    std::unique_ptr<StokesLinearSolver<dim>> linear_solver;
   };
 } // namespace viscofilm
 

@@ -24,9 +24,10 @@ namespace viscofilm
   using namespace dealii;
 
   /// One cell's part of the Stokes matrix, as the assembly computed it.
+  template <int dim>
   struct StokesCellMatrix
   {
-    const DoFHandler<dim>::active_cell_iterator &cell;
+    const typename DoFHandler<dim>::active_cell_iterator &cell;
     /// The Q2–Q1 (or P1disc) values, gradients and JxW on @p cell.
     const FEValues<dim> &fe_values;
     /// η at the quadrature points, the implicit elastic viscosity included,
@@ -36,7 +37,7 @@ namespace viscofilm
     /// Res/k (times the BDF2 factor): the coefficient of (u, v).
     double mass_coefficient;
     /// φ on the same cell, for matrices at other quadrature points.
-    const DoFHandler<dim>::active_cell_iterator &volume_fraction_cell;
+    const typename DoFHandler<dim>::active_cell_iterator &volume_fraction_cell;
     const TrilinosWrappers::MPI::Vector &         volume_fraction;
     const std::vector<types::global_dof_index> &  dof_indices;
     const FullMatrix<double> &                    matrix;
@@ -44,11 +45,12 @@ namespace viscofilm
 
 
   /// How the Stokes system is solved: one class per Stokes solver/Method.
+  template <int dim>
   class StokesLinearSolver
   {
   public:
-    static std::unique_ptr<StokesLinearSolver>
-    create(const StokesSolver::Parameters &parameters, const Model &model);
+    static std::unique_ptr<StokesLinearSolver<dim>>
+    create(const typename StokesSolver<dim>::Parameters &parameters, const Model &model);
 
     virtual ~StokesLinearSolver() = default;
 
@@ -69,7 +71,7 @@ namespace viscofilm
     virtual void
     start_matrix() = 0;
     virtual void
-    add_cell_matrix(const StokesCellMatrix &         cell,
+    add_cell_matrix(const StokesCellMatrix<dim> &         cell,
                     const AffineConstraints<double> &constraints) = 0;
     virtual void
     finish_matrix() = 0;
@@ -92,13 +94,16 @@ namespace viscofilm
 
 
   /// The strategies (stokes_block_preconditioned.cc, stokes_monolithic.cc).
-  std::unique_ptr<StokesLinearSolver>
-  make_block_preconditioned_solver(const StokesSolver::Parameters &parameters,
+  template <int dim>
+  std::unique_ptr<StokesLinearSolver<dim>>
+  make_block_preconditioned_solver(const typename StokesSolver<dim>::Parameters &parameters,
                                    const Model &                   model);
-  std::unique_ptr<StokesLinearSolver>
-  make_direct_solver(const StokesSolver::Parameters &parameters);
-  std::unique_ptr<StokesLinearSolver>
-  make_thesis_solver(const StokesSolver::Parameters &parameters);
+  template <int dim>
+  std::unique_ptr<StokesLinearSolver<dim>>
+  make_direct_solver(const typename StokesSolver<dim>::Parameters &parameters);
+  template <int dim>
+  std::unique_ptr<StokesLinearSolver<dim>>
+  make_thesis_solver(const typename StokesSolver<dim>::Parameters &parameters);
 } // namespace viscofilm
 
 #endif

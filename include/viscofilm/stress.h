@@ -35,9 +35,12 @@ namespace viscofilm
 {
   using namespace dealii;
 
+  template <int dim>
   class StokesSolver;
+  template <int dim>
   class VolumeFraction;
 
+  template <int dim>
   class ElasticStress
   {
   public:
@@ -49,7 +52,7 @@ namespace viscofilm
       parse_parameters(ParameterHandler &prm);
 
       /// FE_Q(2)^n (the thesis; nodes use the mean ∇u of their cells) or
-      /// FE_DGQ(2)^n (every node uses its own cell's ∇u), n = n_symmetric_components.
+      /// FE_DGQ(2)^n (every node uses its own cell's ∇u), n = n_symmetric_components<dim>.
       bool discontinuous = false;
       /// Evaluate c at a foot on the Q1 sub-cells of the Q2 nodes where the
       /// Q2 interpolant is not positive definite.
@@ -71,7 +74,7 @@ namespace viscofilm
     ElasticStress(const parallel::distributed::Triangulation<dim> &triangulation,
                   const Parameters &                             parameters,
                   const Model &                                  model,
-                  const BoundaryConditions &boundary_conditions,
+                  const BoundaryConditions<dim> &boundary_conditions,
                   const unsigned int        order);
 
     /// Distribute dofs and list the stress nodes; @p quadrature is the one
@@ -83,7 +86,7 @@ namespace viscofilm
     /// always 0 without Model/Viscoelastic).
     void
     set_initial_conditions(const Function<dim> &    initial_stress,
-                           const VolumeFraction &volume_fraction);
+                           const VolumeFraction<dim> &volume_fraction);
 
     /// MODEL.md §3 step 1: the nodes' departure feet from u^n and c^n
     /// there; a foot on an inflow boundary takes that boundary's Stress at
@@ -92,9 +95,9 @@ namespace viscofilm
     /// (StokesSolver::midpoint_velocity), and ∇u^n and φ^n are kept at the
     /// feet too.
     void
-    trace_back(DepartureFeet &       feet,
-               const StokesSolver &  stokes,
-               const VolumeFraction &volume_fraction,
+    trace_back(DepartureFeet<dim> &       feet,
+               const StokesSolver<dim> &  stokes,
+               const VolumeFraction<dim> &volume_fraction,
                const double          time,
                const double          time_step);
 
@@ -110,7 +113,7 @@ namespace viscofilm
     /// (∇u^n) and the node (∇u^{n+1}), half a step of relaxation; w, α, β
     /// of φ^n at the foot (φ is constant along the characteristic).
     double
-    update(const StokesSolver &stokes, const VolumeFraction &volume_fraction, const double time_step);
+    update(const StokesSolver<dim> &stokes, const VolumeFraction<dim> &volume_fraction, const double time_step);
 
     /// Order = 2, after update(): the local error of the step, max over the
     /// nodes of ‖τ₂ − τ₁‖_F, τ₁ from the first-order update (eq. 3.44, with
@@ -127,7 +130,7 @@ namespace viscofilm
     /// τ at the quadrature points of @p cell (the Stokes right-hand side),
     /// given φ there; the flow sees Model::stress_coupling(φ) τ.
     void
-    stress_at_quadrature_points(const DoFHandler<dim>::active_cell_iterator &cell,
+    stress_at_quadrature_points(const typename DoFHandler<dim>::active_cell_iterator &cell,
                                 const std::vector<double> &volume_fraction,
                                 std::vector<SymmetricTensor<2, dim>> &tau) const;
 
@@ -182,7 +185,7 @@ namespace viscofilm
 
     /// Add tau_xx, tau_xy, ... (stored order) to @p data_out (τ needs φ with phases).
     void
-    add_output(DataOut<dim> &data_out, const VolumeFraction &volume_fraction);
+    add_output(DataOut<dim> &data_out, const VolumeFraction<dim> &volume_fraction);
 
     const DoFHandler<dim> &
     dof_handler() const;
@@ -195,9 +198,9 @@ namespace viscofilm
     struct Node
     {
       Point<dim>                                position;
-      Triangulation<dim>::active_cell_iterator  cell;
+      typename Triangulation<dim>::active_cell_iterator  cell;
       // c's components in the stored order (c_xx, c_xy, c_yy in 2D)
-      std::array<types::global_dof_index, n_symmetric_components> dofs;
+      std::array<types::global_dof_index, n_symmetric_components<dim>> dofs;
       SymmetricTensor<2, dim>                   foot_conformation;
       Tensor<2, dim>                          foot_velocity_gradient; // Order = 2
       double                                  foot_volume_fraction = 0; // Order = 2
@@ -219,7 +222,7 @@ namespace viscofilm
     /// ‖τ − τ(@p previous)‖_L2 / ‖τ‖_L2 (Frobenius norms) for the current c.
     double
     relative_change(const TrilinosWrappers::MPI::Vector &previous,
-                    const VolumeFraction &               volume_fraction) const;
+                    const VolumeFraction<dim> &               volume_fraction) const;
 
     /// Raise the smallest eigenvalue of c to Stress/Positivity floor at the
     /// nodes of @p distributed below it (after Q2 interpolation); returns
@@ -235,13 +238,13 @@ namespace viscofilm
 
     /// Order = 2: ∇u^n and φ^n at the feet of the last compute() of @p feet.
     void
-    at_feet_for_second_order(const DepartureFeet &   feet,
-                             const StokesSolver &  stokes,
-                             const VolumeFraction &volume_fraction);
+    at_feet_for_second_order(const DepartureFeet<dim> &   feet,
+                             const StokesSolver<dim> &  stokes,
+                             const VolumeFraction<dim> &volume_fraction);
 
     /// ∇u at every node, averaged over the node's cells.
     std::vector<Tensor<2, dim>>
-    nodal_velocity_gradient(const StokesSolver &stokes) const;
+    nodal_velocity_gradient(const StokesSolver<dim> &stokes) const;
 
     /// Node::wall_normal of every node (after the nodes are set up).
     void
@@ -249,12 +252,12 @@ namespace viscofilm
 
     /// φ at every node.
     std::vector<double>
-    nodal_volume_fraction(const VolumeFraction &volume_fraction) const;
+    nodal_volume_fraction(const VolumeFraction<dim> &volume_fraction) const;
 
     const parallel::distributed::Triangulation<dim> &triangulation;
     const Parameters &                             parameters;
     const Model &                                  model;
-    const BoundaryConditions &boundary_conditions;
+    const BoundaryConditions<dim> &boundary_conditions;
     const unsigned int        order;
 
     const FESystem<dim>             fe;
@@ -262,7 +265,7 @@ namespace viscofilm
     IndexSet                      locally_relevant_dofs;
     AffineConstraints<double>     hanging_node_constraints; // continuous c
     Quadrature<dim>                 stokes_quadrature;
-    SolutionCarrier<TrilinosWrappers::MPI::Vector> carrier;
+    SolutionCarrier<dim, TrilinosWrappers::MPI::Vector> carrier;
     std::vector<Node>             nodes;
     std::vector<unsigned int>     node_of_owned_dof; // component-0 dofs only
     std::array<unsigned int, Utilities::pow(3, dim)> lexicographic_node; // [ix + 3 iy (+ 9 iz)]

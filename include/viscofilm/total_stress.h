@@ -28,6 +28,7 @@ namespace viscofilm
   /// dim dimensions: (σ_xx − σ_yy)²/4 + σ_xy² in 2D (the in-plane deviator),
   /// [(σ_xx − σ_yy)² + (σ_yy − σ_zz)² + (σ_zz − σ_xx)²]/6 + σ_xy² + σ_xz² +
   /// σ_yz² in 3D: Σ_{i<j} (σ_ii − σ_jj)²/(2 dim) + σ_ij².
+  template <int dim>
   inline double
   von_mises(const SymmetricTensor<2, dim> &sigma)
   {
@@ -52,12 +53,14 @@ namespace viscofilm
   class TotalStress
   {
   public:
+    static constexpr int dim = FEValuesType::dimension;
+
     template <class QuadratureType>
     TotalStress(const QuadratureType &quadrature,
                 const Model &         model,
-                const StokesSolver &  stokes,
-                const VolumeFraction &volume_fraction,
-                const ElasticStress & stress,
+                const StokesSolver<dim> &  stokes,
+                const VolumeFraction<dim> &volume_fraction,
+                const ElasticStress<dim> & stress,
                 const UpdateFlags     extra_flags = update_default)
       : model(model)
       , stokes(stokes)
@@ -76,7 +79,7 @@ namespace viscofilm
       , grad_phi(quadrature.size())
       , velocity_gradient(quadrature.size())
       , pressure(quadrature.size())
-      , conformation(quadrature.size(), Vector<double>(n_symmetric_components))
+      , conformation(quadrature.size(), Vector<double>(n_symmetric_components<dim>))
     {}
 
     /// Evaluate on @p cell (a cell of any of the DoFHandlers), or on its
@@ -123,9 +126,9 @@ namespace viscofilm
 
   private:
     const Model &         model;
-    const StokesSolver &  stokes;
-    const VolumeFraction &volume_fraction;
-    const ElasticStress & stress;
+    const StokesSolver<dim> &  stokes;
+    const VolumeFraction<dim> &volume_fraction;
+    const ElasticStress<dim> & stress;
     FEValuesType          stokes_values;
     FEValuesType          phi_values;
     FEValuesType          stress_values;

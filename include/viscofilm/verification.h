@@ -15,10 +15,14 @@ namespace viscofilm
 {
   using namespace dealii;
 
+  template <int dim>
   class StokesSolver;
+  template <int dim>
   class ElasticStress;
+  template <int dim>
   class VolumeFraction;
 
+  template <int dim>
   class Verification
   {
   public:
@@ -28,36 +32,36 @@ namespace viscofilm
     parse_parameters(ParameterHandler &prm);
 
     /// f in the momentum equation (zero unless set).
-    ParsedExpression body_force{dim};
+    ParsedExpression<dim> body_force{dim};
 
     /// L2 errors (velocity, pressure) of the Stokes solution at @p time
     /// against the exact solution; with @p pressure_up_to_constant the best
     /// constant shift of the pressure is removed first.
     std::pair<double, double>
-    l2_errors(const StokesSolver &stokes,
+    l2_errors(const StokesSolver<dim> &stokes,
               const double              time,
               const bool                pressure_up_to_constant) const;
 
     /// L2 error of τ (from c and φ) against the exact stress at @p time.
     double
-    stress_l2_error(const ElasticStress & stress,
-                    const VolumeFraction &volume_fraction,
+    stress_l2_error(const ElasticStress<dim> & stress,
+                    const VolumeFraction<dim> &volume_fraction,
                     const double          time) const;
 
     /// L2 error of φ against the exact volume fraction at @p time.
     double
-    volume_fraction_l2_error(const VolumeFraction &volume_fraction,
+    volume_fraction_l2_error(const VolumeFraction<dim> &volume_fraction,
                              const double          time) const;
 
     /// (u, v, p) (3D: (u, v, w, p)) when an exact solution is given: statistics.csv then gets
     /// velocity_l2_error and pressure_l2_error.
-    std::optional<ParsedExpression> exact_solution;
+    std::optional<ParsedExpression<dim>> exact_solution;
 
     /// τ's stored components (dimension.h), if given: statistics.csv gets stress_l2_error.
-    std::optional<ParsedExpression> exact_stress;
+    std::optional<ParsedExpression<dim>> exact_stress;
 
     /// φ, if given: statistics.csv gets volume_fraction_l2_error.
-    std::optional<ParsedExpression> exact_volume_fraction;
+    std::optional<ParsedExpression<dim>> exact_volume_fraction;
   };
 } // namespace viscofilm
 

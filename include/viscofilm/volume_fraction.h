@@ -30,9 +30,12 @@ namespace viscofilm
 {
   using namespace dealii;
 
+  template <int dim>
   class StokesSolver;
+  template <int dim>
   class DepartureFeet;
 
+  template <int dim>
   class VolumeFraction
   {
   public:
@@ -60,7 +63,7 @@ namespace viscofilm
     /// no boundary brings in).
     VolumeFraction(const parallel::distributed::Triangulation<dim> &triangulation,
                    const Parameters &                             parameters,
-                   const BoundaryConditions &                     boundary_conditions,
+                   const BoundaryConditions<dim> &                     boundary_conditions,
                    const std::string &name                   = "volume_fraction",
                    const bool         inflow_from_boundaries = true);
 
@@ -86,8 +89,8 @@ namespace viscofilm
     /// @p estimate_error (order 2, bounded): also the first-order feet, for
     /// error_estimate(). Returns the linear solver's iteration count.
     unsigned int
-    advance(const StokesSolver &stokes,
-            DepartureFeet &     feet,
+    advance(const StokesSolver<dim> &stokes,
+            DepartureFeet<dim> &     feet,
             const double        diffusion,
             const double        time_step,
             const unsigned int  order          = 1,
@@ -143,7 +146,7 @@ namespace viscofilm
   private:
     /// The thesis' step, implicit; without @p stokes: pure φ-scaled diffusion.
     unsigned int
-    gls_step(const StokesSolver *stokes, const double diffusion, const double time_step);
+    gls_step(const StokesSolver<dim> *stokes, const double diffusion, const double time_step);
 
     /// system_matrix φ = system_rhs by GMRES, then the constraints.
     unsigned int
@@ -156,7 +159,7 @@ namespace viscofilm
     void
     semi_lagrangian_step(const DoFHandler<dim> &                     stokes_dofs,
                          const TrilinosWrappers::MPI::BlockVector &velocity,
-                         DepartureFeet &                           feet,
+                         DepartureFeet<dim> &                           feet,
                          const double                              time_step,
                          TrilinosWrappers::MPI::Vector &           advected,
                          TrilinosWrappers::MPI::Vector &           lower,
@@ -204,10 +207,10 @@ namespace viscofilm
     /// (their mean u·n below −1e-8 max|u|, so that round-off on a wall is
     /// no inflow).
     void
-    make_constraints(const StokesSolver *stokes);
+    make_constraints(const StokesSolver<dim> *stokes);
 
     const Parameters &        parameters;
-    const BoundaryConditions &boundary_conditions;
+    const BoundaryConditions<dim> &boundary_conditions;
     const MPI_Comm            mpi_communicator;
     const std::string         name;
     const bool                inflow_from_boundaries;
@@ -224,7 +227,7 @@ namespace viscofilm
     TrilinosWrappers::MPI::Vector current_solution; // ghosted
     TrilinosWrappers::MPI::Vector old_solution;     // φ^n, for restore_old()
     double                        last_error_estimate = 0;
-    SolutionCarrier<TrilinosWrappers::MPI::Vector> carrier;
+    SolutionCarrier<dim, TrilinosWrappers::MPI::Vector> carrier;
   };
 } // namespace viscofilm
 

@@ -1,5 +1,5 @@
 // The 3D path of Initial conditions/Image at unit level (tests/image/
-// half_ball_3d.prm runs it through viscofilm-3d): the 10-page TIFF
+// half_ball_3d.prm runs it through Problem<3>): the 10-page TIFF
 // half_ball_stack.tif (geometry/make_images.py), a half-ball of radius
 // R = 0.25 on 20 × 20 pixels per page, pages 0.05 apart: sections parallel to
 // the bottom wall stacked along y, so the ball is centred at (0.5, 0, 0.5) on
