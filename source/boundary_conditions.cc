@@ -218,7 +218,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  BoundaryConditions<dim>::constrain_velocity(const DoFHandler<dim> &    dof_handler,
+  BoundaryConditions<dim>::constrain_velocity(const DoFHandler<dim> & dof_handler,
                                          const double               time,
                                          AffineConstraints<double> &constraints) const
   {
@@ -318,7 +318,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  BoundaryConditions<dim>::constrain_periodic(const DoFHandler<dim> &    dof_handler,
+  BoundaryConditions<dim>::constrain_periodic(const DoFHandler<dim> & dof_handler,
                                          AffineConstraints<double> &constraints) const
   {
     for (const Boundary &boundary : boundaries)

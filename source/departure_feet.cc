@@ -173,7 +173,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  PointEvaluator<dim>::reinit(const std::vector<Point<dim>> &                         origins,
+  PointEvaluator<dim>::reinit(const std::vector<Point<dim>> &                    origins,
                          const std::vector<Point<dim>> &                         points,
                          std::vector<typename Triangulation<dim>::active_cell_iterator> &hints)
   {
@@ -421,7 +421,7 @@ namespace viscofilm
     // The iterates y, unwrapped across periodic faces (the segment x–y is
     // the characteristic); a foot cut at the boundary stops there.
     std::vector<Point<dim>>                             feet(points);
-    std::vector<typename PointEvaluator<dim>::Trace>                  cuts(points.size());
+    std::vector<typename PointEvaluator<dim>::Trace>    cuts(points.size());
     std::vector<typename Triangulation<dim>::active_cell_iterator> hints;
     std::vector<unsigned int>                           active(points.size());
     for (unsigned int i = 0; i < points.size(); ++i)

@@ -64,7 +64,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  Detachment<dim>::Parameters::parse_parameters(ParameterHandler &              prm,
+  Detachment<dim>::Parameters::parse_parameters(ParameterHandler &         prm,
                                            const typename BiofilmLoads<dim>::Parameters &loads)
   {
     prm.enter_subsection("Detachment");
@@ -87,11 +87,11 @@ namespace viscofilm
                          const typename BiofilmLoads<dim>::Parameters &               loads,
                          const Model &                                  model,
                          const parallel::distributed::Triangulation<dim> &triangulation,
-                         const typename VolumeFraction<dim>::Parameters &             transport,
-                         const BoundaryConditions<dim> &                     boundary_conditions,
-                         const StokesSolver<dim> &                           stokes,
-                         VolumeFraction<dim> &                               volume_fraction,
-                         const ElasticStress<dim> &                          stress)
+                         const typename VolumeFraction<dim>::Parameters & transport,
+                         const BoundaryConditions<dim> &                boundary_conditions,
+                         const StokesSolver<dim> &                      stokes,
+                         VolumeFraction<dim> &                          volume_fraction,
+                         const ElasticStress<dim> &                     stress)
     : parameters(parameters)
     , loads(loads)
     , model(model)
@@ -276,7 +276,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  Detachment<dim>::release_by_strength(const double                   time_step,
+  Detachment<dim>::release_by_strength(const double              time_step,
                                   TrilinosWrappers::MPI::Vector &phi,
                                   std::vector<bool> &            released)
   {

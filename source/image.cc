@@ -424,7 +424,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  BiofilmImage<dim>::parse_parameters(ParameterHandler &      prm,
+  BiofilmImage<dim>::parse_parameters(ParameterHandler & prm,
                                  const std::string &     directory,
                                  const BoundingBox<dim> &domain)
   {

@@ -63,7 +63,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  InitialConditions<dim>::parse_parameters(ParameterHandler &      prm,
+  InitialConditions<dim>::parse_parameters(ParameterHandler & prm,
                                       const std::string &     directory,
                                       const BoundingBox<dim> &domain)
   {

@@ -43,7 +43,7 @@ namespace viscofilm
     {
     public:
       LoadsPostprocessor(const Model &         model,
-                         const StokesSolver<dim> &  stokes,
+                         const StokesSolver<dim> & stokes,
                          const VolumeFraction<dim> &volume_fraction,
                          const ElasticStress<dim> & stress)
         : points(QTrapezoid<1>(), 2)
@@ -86,7 +86,7 @@ namespace viscofilm
       // DataOut's points for build_patches(2), in its order.
       const QIterated<dim>    points;
       const Model &         model;
-      const StokesSolver<dim> &  stokes;
+      const StokesSolver<dim> & stokes;
       const VolumeFraction<dim> &volume_fraction;
       const ElasticStress<dim> & stress;
     };
@@ -206,7 +206,7 @@ namespace viscofilm
   template <int dim>
   BiofilmLoads<dim>::BiofilmLoads(const Parameters &    parameters,
                              const Model &         model,
-                             const StokesSolver<dim> &  stokes,
+                             const StokesSolver<dim> & stokes,
                              const VolumeFraction<dim> &volume_fraction,
                              const ElasticStress<dim> & stress)
     : parameters(parameters)

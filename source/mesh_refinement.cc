@@ -105,7 +105,7 @@ namespace viscofilm
   bool
   MeshRefinement<dim>::flag_cells(parallel::distributed::Triangulation<dim> &triangulation,
                              const VolumeFraction<dim> &volume_fraction,
-                             const StokesSolver<dim> &  stokes,
+                             const StokesSolver<dim> & stokes,
                              const bool            coarsen,
                              const InitialInput *  input) const
   {

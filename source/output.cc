@@ -139,7 +139,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  Output<dim>::prepare(const ParameterHandler &           prm,
+  Output<dim>::prepare(const ParameterHandler &      prm,
                   const std::optional<unsigned int> &resume_after_step,
                   const std::vector<XDMFEntry> &     snapshots)
   {
@@ -191,7 +191,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  Output<dim>::write_snapshot(const unsigned int                             step,
+  Output<dim>::write_snapshot(const unsigned int                        step,
                          const double                                   time,
                          const std::function<void(DataOut<dim> &)> &add_fields)
   {
@@ -241,9 +241,9 @@ namespace viscofilm
 
   template <int dim>
   void
-  Output<dim>::write_probes(const unsigned int    step,
+  Output<dim>::write_probes(const unsigned int step,
                        const double          time,
-                       const StokesSolver<dim> &  stokes,
+                       const StokesSolver<dim> & stokes,
                        const VolumeFraction<dim> &volume_fraction,
                        const ElasticStress<dim> & stress)
   {

@@ -4,7 +4,7 @@ namespace viscofilm
 {
   template <int dim>
   void
-  Parameters<dim>::declare_parameters(ParameterHandler &                          prm,
+  Parameters<dim>::declare_parameters(ParameterHandler &                     prm,
                                  const std::vector<typename Geometry<dim>::NamedBoundary> &boundaries)
   {
     Geometry<dim>::declare_parameters(prm);

@@ -253,7 +253,7 @@ namespace viscofilm
     const parallel::distributed::Triangulation<dim> &triangulation,
     const Parameters &                             parameters,
     const Model &                                  model,
-    const BoundaryConditions<dim> &                     boundary_conditions,
+    const BoundaryConditions<dim> &                boundary_conditions,
     const unsigned int                             order)
     : triangulation(triangulation)
     , parameters(parameters)

@@ -21,7 +21,7 @@ namespace viscofilm
 {
   template <int dim>
   void
-  StokesSolver<dim>::average_viscosity(const Averaging            averaging,
+  StokesSolver<dim>::average_viscosity(const Averaging       averaging,
                                   const std::vector<double> &JxW,
                                   std::vector<double> &      viscosity)
   {

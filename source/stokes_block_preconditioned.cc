@@ -47,7 +47,7 @@ namespace viscofilm
         const TrilinosWrappers::SparseMatrix &     weighted_mass,
         const TrilinosWrappers::PreconditionAMG &  velocity_amg,
         const TrilinosWrappers::PreconditionJacobi &mass_jacobi,
-        const typename StokesSolver<dim>::Parameters &            parameters,
+        const typename StokesSolver<dim>::Parameters & parameters,
         const bool                                  expensive)
         : system_matrix(system_matrix)
         , weighted_mass(weighted_mass)
@@ -97,7 +97,7 @@ namespace viscofilm
       const TrilinosWrappers::SparseMatrix &      weighted_mass;
       const TrilinosWrappers::PreconditionAMG &   velocity_amg;
       const TrilinosWrappers::PreconditionJacobi &mass_jacobi;
-      const typename StokesSolver<dim>::Parameters &            parameters;
+      const typename StokesSolver<dim>::Parameters & parameters;
       const bool                                  expensive;
     };
 
@@ -212,7 +212,7 @@ namespace viscofilm
           const double                                 elastic_viscosity,
           const double                                 mass_coefficient,
           const Model &                                model,
-          const typename StokesSolver<dim>::Averaging                averaging,
+          const typename StokesSolver<dim>::Averaging  averaging,
           const AffineConstraints<double> &            constraints,
           TrilinosWrappers::SparseMatrix &             matrix)
       {
@@ -302,7 +302,7 @@ namespace viscofilm
       void
       start_matrix() override;
       void
-      add_cell_matrix(const StokesCellMatrix<dim> &         cell,
+      add_cell_matrix(const StokesCellMatrix<dim> &    cell,
                       const AffineConstraints<double> &constraints) override;
       void
       finish_matrix() override;
@@ -383,7 +383,7 @@ namespace viscofilm
 
     template <int dim>
     void
-    BlockPreconditioned<dim>::reinit(const DoFHandler<dim> &           dofs,
+    BlockPreconditioned<dim>::reinit(const DoFHandler<dim> &      dofs,
                                 const AffineConstraints<double> & constraints,
                                 const std::vector<IndexSet> &     owned_partitioning,
                                 const std::vector<IndexSet> &     relevant_partitioning)
@@ -465,7 +465,7 @@ namespace viscofilm
 
     template <int dim>
     void
-    BlockPreconditioned<dim>::add_cell_matrix(const StokesCellMatrix<dim> &         cell,
+    BlockPreconditioned<dim>::add_cell_matrix(const StokesCellMatrix<dim> & cell,
                                          const AffineConstraints<double> &constraints)
     {
       const FEValues<dim> &            fe_values = cell.fe_values;

@@ -63,7 +63,7 @@ namespace viscofilm
       }
 
       void
-      add_cell_matrix(const StokesCellMatrix<dim> &         cell,
+      add_cell_matrix(const StokesCellMatrix<dim> &    cell,
                       const AffineConstraints<double> &constraints) override
       {
         constraints.distribute_local_to_global(cell.matrix, cell.dof_indices, matrix);

@@ -183,7 +183,7 @@ namespace viscofilm
     const parallel::distributed::Triangulation<dim> &triangulation,
     const Parameters &                             parameters,
     const Model &                                  model,
-    const BoundaryConditions<dim> &                     boundary_conditions,
+    const BoundaryConditions<dim> &                boundary_conditions,
     const unsigned int                             order)
     : triangulation(triangulation)
     , parameters(parameters)
@@ -313,7 +313,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  ElasticStress<dim>::set_initial_conditions(const Function<dim> &    initial_stress,
+  ElasticStress<dim>::set_initial_conditions(const Function<dim> & initial_stress,
                                         const VolumeFraction<dim> &volume_fraction)
   {
     const std::vector<double> phi = nodal_volume_fraction(volume_fraction);
@@ -355,8 +355,8 @@ namespace viscofilm
 
   template <int dim>
   void
-  ElasticStress<dim>::trace_back(DepartureFeet<dim> &       feet,
-                            const StokesSolver<dim> &  stokes,
+  ElasticStress<dim>::trace_back(DepartureFeet<dim> & feet,
+                            const StokesSolver<dim> & stokes,
                             const VolumeFraction<dim> &volume_fraction,
                             const double          time,
                             const double          time_step)
@@ -465,8 +465,8 @@ namespace viscofilm
 
   template <int dim>
   void
-  ElasticStress<dim>::at_feet_for_second_order(const DepartureFeet<dim> &   feet,
-                                          const StokesSolver<dim> &  stokes,
+  ElasticStress<dim>::at_feet_for_second_order(const DepartureFeet<dim> & feet,
+                                          const StokesSolver<dim> & stokes,
                                           const VolumeFraction<dim> &volume_fraction)
   {
     // ∇u^n (the deformation's rate at t_n) and φ^n at the feet (inflow feet:
@@ -509,9 +509,9 @@ namespace viscofilm
     std::vector<double> phi_dofs(phi_fe.n_dofs_per_cell());
     std::vector<double> gradient_dofs(fe.n_dofs_per_cell());
     const auto          values = feet.at_feet().template evaluate<n_velocity_values<dim>>(
-      [&](const typename Triangulation<dim>::active_cell_iterator &            cell,
+      [&](const typename Triangulation<dim>::active_cell_iterator &   cell,
           const ArrayView<const Point<dim>> &                         unit_points,
-          const ArrayView<std::array<double, n_velocity_values<dim>>> &    values) {
+          const ArrayView<std::array<double, n_velocity_values<dim>>> & values) {
         gradient_values.reinit(cell, unit_points);
         for (unsigned int v = 0; v < n_vectors; ++v)
           {
@@ -632,7 +632,7 @@ namespace viscofilm
 
   template <int dim>
   double
-  ElasticStress<dim>::update(const StokesSolver<dim> &  stokes,
+  ElasticStress<dim>::update(const StokesSolver<dim> & stokes,
                         const VolumeFraction<dim> &volume_fraction,
                         const double          time_step)
   {
@@ -825,7 +825,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  ElasticStress<dim>::set_conformation(const Node &                   node,
+  ElasticStress<dim>::set_conformation(const Node &              node,
                                   const SymmetricTensor<2, dim> &c,
                                   TrilinosWrappers::MPI::Vector &vector)
   {

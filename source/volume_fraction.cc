@@ -73,7 +73,7 @@ namespace viscofilm
   VolumeFraction<dim>::VolumeFraction(
     const parallel::distributed::Triangulation<dim> &triangulation,
     const Parameters &                             parameters,
-    const BoundaryConditions<dim> &                     boundary_conditions,
+    const BoundaryConditions<dim> &                boundary_conditions,
     const std::string &                            name,
     const bool                                     inflow_from_boundaries)
     : parameters(parameters)
@@ -204,7 +204,7 @@ namespace viscofilm
   template <int dim>
   unsigned int
   VolumeFraction<dim>::advance(const StokesSolver<dim> &stokes,
-                          DepartureFeet<dim> &     feet,
+                          DepartureFeet<dim> & feet,
                           const double        diffusion,
                           const double        time_step,
                           const unsigned int  order,
@@ -266,7 +266,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  VolumeFraction<dim>::soften(const double       diffusion,
+  VolumeFraction<dim>::soften(const double  diffusion,
                          const unsigned int n_steps,
                          const double       time_step)
   {
@@ -413,7 +413,7 @@ namespace viscofilm
   void
   VolumeFraction<dim>::semi_lagrangian_step(const DoFHandler<dim> &stokes_dofs,
                                        const TrilinosWrappers::MPI::BlockVector &velocity,
-                                       DepartureFeet<dim> &                           feet,
+                                       DepartureFeet<dim> &                      feet,
                                        const double                   time_step,
                                        TrilinosWrappers::MPI::Vector &advected,
                                        TrilinosWrappers::MPI::Vector &lower,
@@ -548,7 +548,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  VolumeFraction<dim>::bound_hanging_nodes(TrilinosWrappers::MPI::Vector &      distributed,
+  VolumeFraction<dim>::bound_hanging_nodes(TrilinosWrappers::MPI::Vector & distributed,
                                       const TrilinosWrappers::MPI::Vector &lower,
                                       const TrilinosWrappers::MPI::Vector &upper) const
   {
@@ -604,7 +604,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  VolumeFraction<dim>::restore_mass(const double                         mass,
+  VolumeFraction<dim>::restore_mass(const double                    mass,
                                const TrilinosWrappers::MPI::Vector &lower,
                                const TrilinosWrappers::MPI::Vector &upper)
   {
@@ -653,7 +653,7 @@ namespace viscofilm
 
   template <int dim>
   double
-  VolumeFraction<dim>::boundary_flux(const DoFHandler<dim> &                     stokes_dofs,
+  VolumeFraction<dim>::boundary_flux(const DoFHandler<dim> &                stokes_dofs,
                                 const TrilinosWrappers::MPI::BlockVector &velocity_field) const
   {
     const QGauss<dim - 1> quadrature(fe.degree + 1);

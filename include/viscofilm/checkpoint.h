@@ -41,7 +41,7 @@ namespace viscofilm
       /// The error controller's next step (0: none, TimeStepping).
       double                 next_time_step = 0;
       std::vector<XDMFEntry> snapshots;
-      typename Detachment<dim>::Totals     detached; // released and carried out so far
+      typename Detachment<dim>::Totals detached; // released and carried out so far
     };
 
     Checkpoint(const Parameters &parameters,

@@ -217,7 +217,7 @@ namespace viscofilm
 
     const Parameters &                             parameters;
     const parallel::distributed::Triangulation<dim> &triangulation;
-    PointEvaluator<dim>                                 evaluator; // midpoints, then feet
+    PointEvaluator<dim>                            evaluator; // midpoints, then feet
     Statistics                                     accumulated;
     std::vector<types::boundary_id>                inflow;
   };

@@ -68,14 +68,14 @@ namespace viscofilm
     /// fraction and Walls. φ_d lives on @p triangulation with φ's element
     /// and transport scheme (@p transport).
     Detachment(const Parameters &                             parameters,
-               const typename BiofilmLoads<dim>::Parameters &               loads,
+               const typename BiofilmLoads<dim>::Parameters & loads,
                const Model &                                  model,
                const parallel::distributed::Triangulation<dim> &triangulation,
-               const typename VolumeFraction<dim>::Parameters &             transport,
-               const BoundaryConditions<dim> &                     boundary_conditions,
-               const StokesSolver<dim> &                           stokes,
-               VolumeFraction<dim> &                               volume_fraction,
-               const ElasticStress<dim> &                          stress);
+               const typename VolumeFraction<dim>::Parameters & transport,
+               const BoundaryConditions<dim> &                boundary_conditions,
+               const StokesSolver<dim> &                      stokes,
+               VolumeFraction<dim> &                          volume_fraction,
+               const ElasticStress<dim> &                     stress);
 
     /// After VolumeFraction::setup_dofs(): φ_d (0) and the clocks of the
     /// duration.
@@ -158,10 +158,10 @@ namespace viscofilm
     const Parameters &              parameters;
     const typename BiofilmLoads<dim>::Parameters &loads;
     const Model &                   model;
-    const StokesSolver<dim> &            stokes;
-    VolumeFraction<dim> &                volume_fraction;
-    const ElasticStress<dim> &           stress;
-    const BoundaryConditions<dim> &      boundary_conditions;
+    const StokesSolver<dim> &       stokes;
+    VolumeFraction<dim> &           volume_fraction;
+    const ElasticStress<dim> &      stress;
+    const BoundaryConditions<dim> & boundary_conditions;
 
     /// φ_d: the detached biofilm, a passive tracer (doc/detachment.md).
     VolumeFraction<dim> detached;

@@ -83,7 +83,7 @@ namespace viscofilm
 
     BiofilmLoads(const Parameters &    parameters,
                  const Model &         model,
-                 const StokesSolver<dim> &  stokes,
+                 const StokesSolver<dim> & stokes,
                  const VolumeFraction<dim> &volume_fraction,
                  const ElasticStress<dim> & stress);
 
@@ -110,7 +110,7 @@ namespace viscofilm
 
     const Parameters &    parameters;
     const Model &         model;
-    const StokesSolver<dim> &  stokes;
+    const StokesSolver<dim> & stokes;
     const VolumeFraction<dim> &volume_fraction;
     const ElasticStress<dim> & stress;
 

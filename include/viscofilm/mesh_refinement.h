@@ -55,8 +55,8 @@ namespace viscofilm
     /// the level bounds. Returns whether any cell was flagged (collective).
     bool
     flag_cells(parallel::distributed::Triangulation<dim> &triangulation,
-               const VolumeFraction<dim> &                volume_fraction,
-               const StokesSolver<dim> &                  stokes,
+               const VolumeFraction<dim> &              volume_fraction,
+               const StokesSolver<dim> &                stokes,
                const bool                               coarsen,
                const InitialInput *                     input = nullptr) const;
 

@@ -113,7 +113,7 @@ namespace viscofilm
     void
     write_probes(const unsigned int    step,
                  const double          time,
-                 const StokesSolver<dim> &  stokes,
+                 const StokesSolver<dim> & stokes,
                  const VolumeFraction<dim> &volume_fraction,
                  const ElasticStress<dim> & stress);
 

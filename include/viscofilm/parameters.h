@@ -39,21 +39,21 @@ namespace viscofilm
     void
     parse_parameters(ParameterHandler &prm, const std::string &directory);
 
-    Geometry<dim>                 geometry;
-    MeshRefinement<dim>           mesh_refinement;
+    Geometry<dim>            geometry;
+    MeshRefinement<dim>      mesh_refinement;
     TimeStepping             time_stepping;
     Model                    model;
-    BoundaryConditions<dim>       boundary_conditions;
-    InitialConditions<dim>        initial_conditions;
+    BoundaryConditions<dim>  boundary_conditions;
+    InitialConditions<dim>   initial_conditions;
     typename StokesSolver<dim>::Parameters stokes_solver;
     typename ElasticStress<dim>::Parameters stress;
     typename DepartureFeet<dim>::Parameters departure_feet;
     typename VolumeFraction<dim>::Parameters stabilization;
-    typename BiofilmLoads<dim>::Parameters  detachment;
-    typename Detachment<dim>::Parameters    release;
-    typename Output<dim>::Parameters       output;
-    Verification<dim>             verification;
-    typename Checkpoint<dim>::Parameters   checkpointing;
+    typename BiofilmLoads<dim>::Parameters detachment;
+    typename Detachment<dim>::Parameters release;
+    typename Output<dim>::Parameters output;
+    Verification<dim>        verification;
+    typename Checkpoint<dim>::Parameters checkpointing;
   };
 } // namespace viscofilm
 

@@ -74,7 +74,7 @@ namespace viscofilm
     /// @p input: the initial φ the mesh must resolve between φ's nodes too.
     bool
     refine_mesh(const bool                            coarsen = true,
-                const typename MeshRefinement<dim>::InitialInput *input   = nullptr);
+                const typename MeshRefinement<dim>::InitialInput *input = nullptr);
     /// After any change of the mesh: caches that depend on it.
     void
     mesh_changed();
@@ -106,7 +106,7 @@ namespace viscofilm
     void
     write_statistics(const unsigned int step, const double time, const StepReport &report);
 
-    Parameters<dim> &            parameters;
+    Parameters<dim> &       parameters;
     double                  time_step     = 0; // of the current step
     double                  step_cfl      = 0; // its max|u^n| k / Δx
     double                  min_cell_size = 0; // smallest cell edge
@@ -119,14 +119,14 @@ namespace viscofilm
     std::unique_ptr<TimerOutput> computing_timer;
 
     parallel::distributed::Triangulation<dim> triangulation;
-    StokesSolver<dim>                            stokes;
-    VolumeFraction<dim>                          volume_fraction;
-    ElasticStress<dim>                           stress;
-    DepartureFeet<dim>                           departure_feet;
-    BiofilmLoads<dim>                            loads;
-    Detachment<dim>                              detachment;
-    Output<dim>                                  output;
-    Checkpoint<dim>                              checkpoint;
+    StokesSolver<dim>                       stokes;
+    VolumeFraction<dim>                     volume_fraction;
+    ElasticStress<dim>                      stress;
+    DepartureFeet<dim>                      departure_feet;
+    BiofilmLoads<dim>                       loads;
+    Detachment<dim>                         detachment;
+    Output<dim>                             output;
+    Checkpoint<dim>                         checkpoint;
   };
 } // namespace viscofilm
 

@@ -145,7 +145,7 @@ namespace viscofilm
     StokesSolver(const parallel::distributed::Triangulation<dim> &triangulation,
                  const Parameters &                             parameters,
                  const Model &                                  model,
-                 const BoundaryConditions<dim> &                     boundary_conditions,
+                 const BoundaryConditions<dim> &                boundary_conditions,
                  const unsigned int                             order);
     ~StokesSolver();
 
@@ -290,7 +290,7 @@ namespace viscofilm
     const parallel::distributed::Triangulation<dim> &triangulation;
     const Parameters &                             parameters;
     const Model &                                  model;
-    const BoundaryConditions<dim> &                     boundary_conditions;
+    const BoundaryConditions<dim> &                boundary_conditions;
     const MPI_Comm                                 mpi_communicator;
 
     const FESystem<dim> fe;

@@ -71,7 +71,7 @@ namespace viscofilm
     virtual void
     start_matrix() = 0;
     virtual void
-    add_cell_matrix(const StokesCellMatrix<dim> &         cell,
+    add_cell_matrix(const StokesCellMatrix<dim> &    cell,
                     const AffineConstraints<double> &constraints) = 0;
     virtual void
     finish_matrix() = 0;

@@ -95,8 +95,8 @@ namespace viscofilm
     /// (StokesSolver::midpoint_velocity), and ∇u^n and φ^n are kept at the
     /// feet too.
     void
-    trace_back(DepartureFeet<dim> &       feet,
-               const StokesSolver<dim> &  stokes,
+    trace_back(DepartureFeet<dim> &  feet,
+               const StokesSolver<dim> & stokes,
                const VolumeFraction<dim> &volume_fraction,
                const double          time,
                const double          time_step);
@@ -198,7 +198,7 @@ namespace viscofilm
     struct Node
     {
       Point<dim>                                position;
-      typename Triangulation<dim>::active_cell_iterator  cell;
+      typename Triangulation<dim>::active_cell_iterator cell;
       // c's components in the stored order (c_xx, c_xy, c_yy in 2D)
       std::array<types::global_dof_index, n_symmetric_components<dim>> dofs;
       SymmetricTensor<2, dim>                   foot_conformation;
@@ -222,7 +222,7 @@ namespace viscofilm
     /// ‖τ − τ(@p previous)‖_L2 / ‖τ‖_L2 (Frobenius norms) for the current c.
     double
     relative_change(const TrilinosWrappers::MPI::Vector &previous,
-                    const VolumeFraction<dim> &               volume_fraction) const;
+                    const VolumeFraction<dim> &          volume_fraction) const;
 
     /// Raise the smallest eigenvalue of c to Stress/Positivity floor at the
     /// nodes of @p distributed below it (after Q2 interpolation); returns
@@ -238,8 +238,8 @@ namespace viscofilm
 
     /// Order = 2: ∇u^n and φ^n at the feet of the last compute() of @p feet.
     void
-    at_feet_for_second_order(const DepartureFeet<dim> &   feet,
-                             const StokesSolver<dim> &  stokes,
+    at_feet_for_second_order(const DepartureFeet<dim> & feet,
+                             const StokesSolver<dim> & stokes,
                              const VolumeFraction<dim> &volume_fraction);
 
     /// ∇u at every node, averaged over the node's cells.

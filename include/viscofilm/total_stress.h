@@ -58,7 +58,7 @@ namespace viscofilm
     template <class QuadratureType>
     TotalStress(const QuadratureType &quadrature,
                 const Model &         model,
-                const StokesSolver<dim> &  stokes,
+                const StokesSolver<dim> & stokes,
                 const VolumeFraction<dim> &volume_fraction,
                 const ElasticStress<dim> & stress,
                 const UpdateFlags     extra_flags = update_default)
@@ -126,7 +126,7 @@ namespace viscofilm
 
   private:
     const Model &         model;
-    const StokesSolver<dim> &  stokes;
+    const StokesSolver<dim> & stokes;
     const VolumeFraction<dim> &volume_fraction;
     const ElasticStress<dim> & stress;
     FEValuesType          stokes_values;

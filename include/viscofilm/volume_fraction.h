@@ -63,7 +63,7 @@ namespace viscofilm
     /// no boundary brings in).
     VolumeFraction(const parallel::distributed::Triangulation<dim> &triangulation,
                    const Parameters &                             parameters,
-                   const BoundaryConditions<dim> &                     boundary_conditions,
+                   const BoundaryConditions<dim> &                boundary_conditions,
                    const std::string &name                   = "volume_fraction",
                    const bool         inflow_from_boundaries = true);
 
@@ -90,7 +90,7 @@ namespace viscofilm
     /// error_estimate(). Returns the linear solver's iteration count.
     unsigned int
     advance(const StokesSolver<dim> &stokes,
-            DepartureFeet<dim> &     feet,
+            DepartureFeet<dim> & feet,
             const double        diffusion,
             const double        time_step,
             const unsigned int  order          = 1,
@@ -159,7 +159,7 @@ namespace viscofilm
     void
     semi_lagrangian_step(const DoFHandler<dim> &                     stokes_dofs,
                          const TrilinosWrappers::MPI::BlockVector &velocity,
-                         DepartureFeet<dim> &                           feet,
+                         DepartureFeet<dim> &                      feet,
                          const double                              time_step,
                          TrilinosWrappers::MPI::Vector &           advected,
                          TrilinosWrappers::MPI::Vector &           lower,
