@@ -41,6 +41,8 @@ namespace viscofilm
       double                 next_time_step = 0;
       std::vector<XDMFEntry> snapshots;
       Detachment::Totals     detached; // released and carried out so far
+      /// What φ carried out and in through the boundary so far.
+      VolumeFraction::Exchange volume_fraction;
     };
 
     Checkpoint(const Parameters &parameters,
