@@ -184,7 +184,10 @@ namespace viscofilm
         out << std::setprecision(17) << "step " << state.step << "\ntime "
             << state.time << "\nprevious_time_step " << state.previous_time_step
             << "\ndetached " << state.detached.released << "\ndetached_outflow "
-            << state.detached.outflow << "\nnext_time_step "
+            << state.detached.outflow << "\nvolume_fraction_net "
+            << state.volume_fraction.net << "\nvolume_fraction_outflow "
+            << state.volume_fraction.outflow << "\nvolume_fraction_inflow "
+            << state.volume_fraction.inflow << "\nnext_time_step "
             << state.next_time_step << "\n";
         for (const auto &[path, value] : critical_entries(prm))
           out << "parameter " << path << " = " << value << "\n";
@@ -243,6 +246,9 @@ namespace viscofilm
       {"previous_time_step", &state.previous_time_step},
       {"detached", &state.detached.released},
       {"detached_outflow", &state.detached.outflow},
+      {"volume_fraction_net", &state.volume_fraction.net},
+      {"volume_fraction_outflow", &state.volume_fraction.outflow},
+      {"volume_fraction_inflow", &state.volume_fraction.inflow},
       {"next_time_step", &state.next_time_step}};
     std::map<std::string, std::string> saved;
     while (std::getline(in, line) && line != "snapshots")

@@ -111,6 +111,7 @@ namespace viscofilm
       return;
     detached.setup_dofs();
     setup_clock();
+    connectivity.reset();
   }
 
 
@@ -306,48 +307,33 @@ namespace viscofilm
 
   template <int dim>
   void
-  Detachment<dim>::release_unattached(const TrilinosWrappers::MPI::Vector &ghosted_phi,
-                                 TrilinosWrappers::MPI::Vector &      phi,
-                                 std::vector<bool> &                  released)
+  Detachment<dim>::build_connectivity()
   {
-    const DoFHandler<dim> &dofs     = volume_fraction.dof_handler();
-    const IndexSet         owned    = dofs.locally_owned_dofs();
-    const IndexSet         relevant = DoFTools::extract_locally_relevant_dofs(dofs);
-    const MPI_Comm         comm     = dofs.get_communicator();
-    const unsigned int     n        = relevant.n_elements();
-
-    // The graph on this rank's biofilm nodes (by index within relevant):
-    // nodes of one cell (owned or ghost) are joined, and so are a
+    const DoFHandler<dim> &dofs = volume_fraction.dof_handler();
+    const IndexSet         owned = dofs.locally_owned_dofs();
+    const MPI_Comm         comm  = dofs.get_communicator();
+    Connectivity &         graph = connectivity.emplace();
+    graph.relevant               = DoFTools::extract_locally_relevant_dofs(dofs);
+    const IndexSet &relevant     = graph.relevant;
+    // Nodes of one cell (owned or ghost) are joined, and so are a
     // constrained node and its masters (periodic images, hanging nodes).
-    std::vector<bool> biofilm(n);
-    for (unsigned int k = 0; k < n; ++k)
-      biofilm[k] = (ghosted_phi(relevant.nth_index_in_set(k)) >= loads.interface_level);
-    std::vector<std::vector<unsigned int>> cells; // each cell's biofilm nodes
-    std::vector<std::vector<unsigned int>> cells_of(n);
-    std::vector<bool>                      attached(n, false);
-    std::vector<types::global_dof_index>   local_dofs(dofs.get_fe().n_dofs_per_cell());
-    std::vector<types::global_dof_index>   face_dofs(dofs.get_fe().n_dofs_per_face());
+    std::vector<types::global_dof_index> local_dofs(dofs.get_fe().n_dofs_per_cell());
+    std::vector<types::global_dof_index> face_dofs(dofs.get_fe().n_dofs_per_face());
+    std::vector<bool>                    on_wall(relevant.n_elements(), false);
     for (const auto &cell : dofs.active_cell_iterators())
       if (!cell->is_artificial())
         {
           cell->get_dof_indices(local_dofs);
           std::vector<unsigned int> nodes;
           for (const auto dof : local_dofs)
-            if (biofilm[relevant.index_within_set(dof)])
-              nodes.push_back(relevant.index_within_set(dof));
-          if (nodes.empty())
-            continue;
-          for (const unsigned int k : nodes)
-            cells_of[k].push_back(cells.size());
-          cells.push_back(nodes);
-          // The seeds: biofilm on a wall.
+            nodes.push_back(relevant.index_within_set(dof));
+          graph.cells.push_back(nodes);
           for (const unsigned int f : cell->face_indices())
             if (cell->at_boundary(f) && loads.is_wall(cell->face(f)->boundary_id()))
               {
                 cell->face(f)->get_dof_indices(face_dofs);
                 for (const auto dof : face_dofs)
-                  attached[relevant.index_within_set(dof)] =
-                    biofilm[relevant.index_within_set(dof)];
+                  on_wall[relevant.index_within_set(dof)] = true;
               }
         }
     AffineConstraints<double> constraints(relevant);
@@ -355,20 +341,52 @@ namespace viscofilm
     boundary_conditions.constrain_periodic(dofs, constraints);
     constraints.close();
     for (const auto &line : constraints.get_lines())
-      if (relevant.is_element(line.index) && biofilm[relevant.index_within_set(line.index)])
+      if (relevant.is_element(line.index))
         for (const auto &[master, weight] : line.entries)
-          if (relevant.is_element(master) && biofilm[relevant.index_within_set(master)])
-            {
-              const std::vector<unsigned int> pair = {relevant.index_within_set(line.index),
-                                                      relevant.index_within_set(master)};
-              for (const unsigned int k : pair)
-                cells_of[k].push_back(cells.size());
-              cells.push_back(pair);
-            }
+          if (relevant.is_element(master))
+            graph.cells.push_back(
+              {relevant.index_within_set(line.index), relevant.index_within_set(master)});
+    graph.cells_of.resize(relevant.n_elements());
+    for (unsigned int c = 0; c < graph.cells.size(); ++c)
+      for (const unsigned int k : graph.cells[c])
+        graph.cells_of[k].push_back(c);
+    for (unsigned int k = 0; k < relevant.n_elements(); ++k)
+      if (on_wall[k])
+        graph.wall_nodes.push_back(k);
+    graph.shared.reinit(owned, relevant, comm, true);
+    graph.seen.reinit(owned, relevant, comm);
+    graph.sum.reinit(owned, comm);
+  }
+
+
+  template <int dim>
+  void
+  Detachment<dim>::release_unattached(const TrilinosWrappers::MPI::Vector &ghosted_phi,
+                                 TrilinosWrappers::MPI::Vector &      phi,
+                                 std::vector<bool> &                  released)
+  {
+    // The graph and the ghost vectors depend on the mesh only: built once
+    // per mesh (cleared by setup_dofs() and finish_refinement()).
+    if (!connectivity)
+      build_connectivity();
+    Connectivity &         graph    = *connectivity;
+    const IndexSet &       relevant = graph.relevant;
+    const IndexSet         owned    = volume_fraction.dof_handler().locally_owned_dofs();
+    const MPI_Comm         comm     = volume_fraction.dof_handler().get_communicator();
+    const unsigned int     n        = relevant.n_elements();
+
+    // The walk goes through biofilm nodes only; the seeds: biofilm on a
+    // wall.
+    std::vector<bool> biofilm(n);
+    for (unsigned int k = 0; k < n; ++k)
+      biofilm[k] = (ghosted_phi(relevant.nth_index_in_set(k)) >= loads.interface_level);
+    std::vector<bool> attached(n, false);
+    for (const unsigned int k : graph.wall_nodes)
+      attached[k] = biofilm[k];
 
     // Flood from the walls on this rank, share with the ranks that see the
     // same nodes, again until no rank attaches a node more.
-    std::vector<bool> cell_done(cells.size(), false);
+    std::vector<bool> cell_done(graph.cells.size(), false);
     for (types::global_dof_index n_attached = 0;;)
       {
         std::vector<unsigned int> front;
@@ -379,34 +397,31 @@ namespace viscofilm
           {
             const unsigned int k = front.back();
             front.pop_back();
-            for (const unsigned int c : cells_of[k])
+            for (const unsigned int c : graph.cells_of[k])
               if (!cell_done[c])
                 {
                   cell_done[c] = true;
-                  for (const unsigned int other : cells[c])
-                    if (!attached[other])
+                  for (const unsigned int other : graph.cells[c])
+                    if (biofilm[other] && !attached[other])
                       {
                         attached[other] = true;
                         front.push_back(other);
                       }
                 }
           }
-        TrilinosWrappers::MPI::Vector shared;
-        shared.reinit(owned, relevant, comm, true);
+        graph.shared = 0;
         for (unsigned int k = 0; k < n; ++k)
           if (attached[k])
-            shared(relevant.nth_index_in_set(k)) += 1;
-        shared.compress(VectorOperation::add);
-        TrilinosWrappers::MPI::Vector sum(owned, comm);
+            graph.shared(relevant.nth_index_in_set(k)) += 1;
+        graph.shared.compress(VectorOperation::add);
         for (const types::global_dof_index i : owned)
-          sum(i) = shared(i);
-        TrilinosWrappers::MPI::Vector seen(owned, relevant, comm);
-        seen = sum;
+          graph.sum(i) = graph.shared(i);
+        graph.seen = graph.sum;
         types::global_dof_index owned_attached = 0;
         for (unsigned int k = 0; k < n; ++k)
           {
             const types::global_dof_index dof = relevant.nth_index_in_set(k);
-            attached[k]                       = attached[k] || seen(dof) > 0;
+            attached[k] = attached[k] || graph.seen(dof) > 0;
             owned_attached += (attached[k] && owned.is_element(dof));
           }
         owned_attached = Utilities::MPI::sum(owned_attached, comm);
@@ -516,6 +531,14 @@ namespace viscofilm
 
 
   template <int dim>
+  const VolumeFraction<dim> *
+  Detachment<dim>::detached_fraction() const
+  {
+    return parameters.enabled ? &detached : nullptr;
+  }
+
+
+  template <int dim>
   typename Detachment<dim>::Totals
   Detachment<dim>::totals() const
   {
@@ -559,6 +582,7 @@ namespace viscofilm
         clock = distributed;
       }
     detached.finish_refinement();
+    connectivity.reset();
   }
 
 

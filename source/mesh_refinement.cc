@@ -4,6 +4,7 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q1.h>
 
+#include <viscofilm/dof_cell.h>
 #include <viscofilm/input.h>
 #include <viscofilm/mesh_refinement.h>
 #include <viscofilm/stokes.h>
@@ -44,7 +45,8 @@ namespace viscofilm
                       "varies across the cell by more than Refinement "
                       "threshold), biofilm (the interface and the cells where "
                       "φ exceeds Refinement threshold: the elastic stress lives "
-                      "there), velocity (Kelly's indicator of the velocity error "
+                      "there; both look at the detached fraction φ_d of "
+                      "Detachment/Release as at φ), velocity (Kelly's indicator of the velocity error "
                       "exceeds Velocity threshold × max|u|: the flow around the "
                       "biofilm and at the walls).");
     prm.declare_entry("Refinement threshold",
@@ -105,6 +107,7 @@ namespace viscofilm
   bool
   MeshRefinement<dim>::flag_cells(parallel::distributed::Triangulation<dim> &triangulation,
                              const VolumeFraction<dim> &volume_fraction,
+                             const VolumeFraction<dim> *detached,
                              const StokesSolver<dim> & stokes,
                              const bool            coarsen,
                              const InitialInput *  input) const
@@ -118,8 +121,20 @@ namespace viscofilm
     const DoFHandler<dim> &dofs = volume_fraction.dof_handler();
     const Quadrature<dim>  nodes(dofs.get_fe().get_unit_support_points());
     FEValues<dim>          fe_values(dofs.get_fe(), nodes, update_values);
-    std::vector<double>  phi;
+    std::vector<double>  phi, phi_detached(nodes.size());
     unsigned int         n_flagged = 0;
+    // The φ indicators of one fraction's values in a cell, relative to
+    // their threshold: its variation across the cell (interface), and
+    // itself (biofilm).
+    const auto fraction_need = [&](const std::vector<double> &values) {
+      const auto [low, high] = std::minmax_element(values.begin(), values.end());
+      double need = 0;
+      if (interface_indicator)
+        need = (*high - *low) / threshold;
+      if (biofilm_indicator)
+        need = std::max({need, (*high - *low) / threshold, *high / threshold});
+      return need;
+    };
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -136,14 +151,18 @@ namespace viscofilm
                 phi.push_back(input->phi.value(
                   StaticMappingQ1<dim>::mapping.transform_unit_to_real_cell(cell, unit)));
             }
-          const auto [low, high] = std::minmax_element(phi.begin(), phi.end());
           // Each measure relative to its threshold; the largest counts:
-          // > 1 refine, < 1/4 coarsen.
-          double need = 0;
-          if (interface_indicator)
-            need = (*high - *low) / threshold;
-          if (biofilm_indicator)
-            need = std::max({need, (*high - *low) / threshold, *high / threshold});
+          // > 1 refine, < 1/4 coarsen. The detached fraction φ_d by its
+          // own indicators, not those of φ + φ_d: a release leaves φ + φ_d
+          // as it was, but fronts in both, each of which the transport
+          // must resolve (doc/detachment.md).
+          double need = fraction_need(phi);
+          if (detached != nullptr)
+            {
+              fe_values.reinit(cell_of(detached->dof_handler(), cell));
+              fe_values.get_function_values(detached->solution(), phi_detached);
+              need = std::max(need, fraction_need(phi_detached));
+            }
           if (max_velocity > 0)
             need = std::max(need,
                             velocity_error[cell->active_cell_index()] /

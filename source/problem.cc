@@ -130,6 +130,7 @@ namespace viscofilm
     TimerOutput::Scope t(*computing_timer, "refine mesh");
     if (!parameters.mesh_refinement.flag_cells(triangulation,
                                                volume_fraction,
+                                               detachment.detached_fraction(),
                                                stokes,
                                                coarsen,
                                                input))
@@ -179,7 +180,8 @@ namespace viscofilm
                        stokes.previous_time_step(),
                        proposed_time_step,
                        output.snapshots(),
-                       detachment.totals()},
+                       detachment.totals(),
+                       volume_fraction.boundary_exchange()},
                       prm);
   }
 
@@ -201,6 +203,7 @@ namespace viscofilm
     volume_fraction.finish_refinement();
     detachment.finish_refinement();
     detachment.set_totals(state.detached);
+    volume_fraction.set_boundary_exchange(state.volume_fraction);
     mesh_changed();
     proposed_time_step = state.next_time_step;
     output.prepare(prm, state.step, state.snapshots);
@@ -457,6 +460,9 @@ namespace viscofilm
     statistics.set("max_velocity", max_velocity);
     statistics.set("max_cell_divergence", stokes.max_cell_divergence());
     statistics.set("volume_fraction_integral", volume_fraction.integral());
+    const typename VolumeFraction<dim>::Exchange exchange = volume_fraction.boundary_exchange();
+    statistics.set("volume_fraction_outflow", exchange.outflow);
+    statistics.set("volume_fraction_inflow", exchange.inflow);
     const auto [phi_min, phi_max] = volume_fraction.range();
     statistics.set("volume_fraction_min", phi_min);
     statistics.set("volume_fraction_max", phi_max);

@@ -211,20 +211,27 @@ namespace viscofilm
                           const bool          estimate_error)
   {
     old_solution        = current_solution;
+    old_exchange        = exchange;
     last_error_estimate = 0;
-    if (!parameters.bounded)
-      return gls_step(&stokes, diffusion, time_step);
-    // Second order: the feet by the midpoint rule, with u^{n+1/2} ≈
-    // (u^n + u^{n+1})/2 (local error O(k³)); first order: with u^{n+1},
+    // Second order (bounded): the feet by the midpoint rule, with u^{n+1/2}
+    // ≈ (u^n + u^{n+1})/2 (local error O(k³)); first order: with u^{n+1},
     // as the thesis transports φ with it.
+    const bool                               midpoint_rule = parameters.bounded && order == 2;
     const DoFHandler<dim> &                  stokes_dofs = stokes.dof_handler();
     TrilinosWrappers::MPI::BlockVector midpoint;
-    if (order == 2)
+    if (midpoint_rule)
       midpoint = average(stokes.start_of_step_solution(), stokes.solution());
     const TrilinosWrappers::MPI::BlockVector &velocity =
-      order == 2 ? midpoint : stokes.solution();
-    // The mass balance of the step: M^{n+1} = M^n − k ∫_∂Ω φ^n u·n.
-    const double mass = integral() - time_step * boundary_flux(stokes_dofs, velocity);
+      midpoint_rule ? midpoint : stokes.solution();
+    // The mass balance of the step: M^{n+1} = M^n − k ∫_∂Ω φ^n u·n, and
+    // what of it leaves and what enters (the statistics' totals).
+    const Exchange flux = boundary_flux(stokes_dofs, velocity);
+    exchange.net += time_step * flux.net;
+    exchange.outflow += time_step * flux.outflow;
+    exchange.inflow += time_step * flux.inflow;
+    if (!parameters.bounded)
+      return gls_step(&stokes, diffusion, time_step);
+    const double mass = integral() - time_step * flux.net;
     make_constraints(&stokes);
     TrilinosWrappers::MPI::Vector advected, lower, upper;
     if (estimate_error && order == 2)
@@ -261,6 +268,7 @@ namespace viscofilm
   VolumeFraction<dim>::restore_old()
   {
     current_solution = old_solution;
+    exchange         = old_exchange;
   }
 
 
@@ -652,7 +660,7 @@ namespace viscofilm
 
 
   template <int dim>
-  double
+  typename VolumeFraction<dim>::Exchange
   VolumeFraction<dim>::boundary_flux(const DoFHandler<dim> &                stokes_dofs,
                                 const TrilinosWrappers::MPI::BlockVector &velocity_field) const
   {
@@ -664,7 +672,9 @@ namespace viscofilm
     const FEValuesExtractors::Vector velocities(0);
     std::vector<double>              phi(quadrature.size());
     std::vector<Tensor<1, dim>>        velocity(quadrature.size());
-    double                           flux = 0;
+    // [net, out, in]: the periodic faces' fluxes cancel in the net flux;
+    // out and in count the other faces only.
+    double flux[3] = {};
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned() && cell->at_boundary())
         for (const unsigned int f : cell->face_indices())
@@ -674,11 +684,38 @@ namespace viscofilm
               stokes_face.reinit(cell_of(stokes_dofs, cell), f);
               phi_face.get_function_values(current_solution, phi);
               stokes_face[velocities].get_function_values(velocity_field, velocity);
+              const bool periodic =
+                boundary_conditions.boundary(cell->face(f)->boundary_id()).type ==
+                BoundaryConditions::Type::periodic;
               for (const unsigned int q : phi_face.quadrature_point_indices())
-                flux += phi[q] * (velocity[q] * stokes_face.normal_vector(q)) *
-                        phi_face.JxW(q);
+                {
+                  const double normal_velocity = velocity[q] * stokes_face.normal_vector(q);
+                  const double through = phi[q] * normal_velocity * phi_face.JxW(q);
+                  flux[0] += through;
+                  // By the flow's direction (φ between the nodes may be
+                  // slightly negative).
+                  if (!periodic)
+                    flux[normal_velocity > 0 ? 1 : 2] += (normal_velocity > 0 ? through : -through);
+                }
             }
-    return Utilities::MPI::sum(flux, mpi_communicator);
+    Utilities::MPI::sum(flux, mpi_communicator, flux);
+    return {flux[0], flux[1], flux[2]};
+  }
+
+
+  template <int dim>
+  typename VolumeFraction<dim>::Exchange
+  VolumeFraction<dim>::boundary_exchange() const
+  {
+    return exchange;
+  }
+
+
+  template <int dim>
+  void
+  VolumeFraction<dim>::set_boundary_exchange(const Exchange &totals)
+  {
+    exchange = old_exchange = totals;
   }
 
 

@@ -42,8 +42,8 @@ in every row of the run(s), and "file.csv:max(column)<value" (or sum) for the
 largest value or the sum over the rows: a check against a stated limit,
 whatever the reference says. "file.csv[step>N]:..." checks only the rows
 after step N ([step>0]: after the initial state); any column and < work
-alike ("statistics.csv[time<0.1]:time_step<0.01"). "file.csv:a+b<value"
-bounds the sum of columns a and b in each row (a balance).
+alike ("statistics.csv[time<0.1]:time_step<0.01"). "file.csv:a+b-c<value"
+bounds the sum of columns a and b minus column c in each row (a balance).
 
 --data FILE (repeatable) copies FILE into the work directory before the run:
 the images a .prm names relative to itself.
@@ -140,7 +140,7 @@ def check_bounds(opts, directory):
     the largest value or the sum over the rows."""
     for bound in opts.bound:
         match = re.fullmatch(r"([^[]+)(?:\[(\w+)([<>])([^]]+)\])?:"
-                             r"(\w+(?:\+\w+)*|max\(\w+\)|sum\(\w+\))([<>])(.+)", bound)
+                             r"(\w+(?:[+-]\w+)*|max\(\w+\)|sum\(\w+\))([<>])(.+)", bound)
         if not match:
             fail("bad --bound " + bound)
         filename, row_column, row_relation, row_limit, column, relation, limit = match.groups()
@@ -155,7 +155,8 @@ def check_bounds(opts, directory):
             value = max(values) if reduction.group(1) == "max" else sum(values)
             checks = [(value, "over all rows")]
         else:
-            checks = [(sum(float(row[c]) for c in column.split("+")),
+            terms = re.findall(r"([+-]?)(\w+)", column)
+            checks = [(sum((-1 if sign == "-" else 1) * float(row[c]) for sign, c in terms),
                        "at step " + row.get("step", "?")) for row in rows]
         for value, where in checks:
             if not (value < float(limit) if relation == "<" else value > float(limit)):

@@ -42,6 +42,8 @@ namespace viscofilm
       double                 next_time_step = 0;
       std::vector<XDMFEntry> snapshots;
       typename Detachment<dim>::Totals detached; // released and carried out so far
+      /// What φ carried out and in through the boundary so far.
+      typename VolumeFraction<dim>::Exchange volume_fraction;
     };
 
     Checkpoint(const Parameters &parameters,

@@ -15,6 +15,7 @@
 #include <viscofilm/model.h>
 #include <viscofilm/volume_fraction.h>
 
+#include <optional>
 #include <vector>
 
 namespace viscofilm
@@ -105,6 +106,10 @@ namespace viscofilm
     void
     add_output(DataOut<dim> &data_out) const;
 
+    /// φ_d, for the refinement indicator; null with Release = false.
+    const VolumeFraction<dim> *
+    detached_fraction() const;
+
     Totals
     totals() const;
     void
@@ -149,6 +154,25 @@ namespace viscofilm
                        TrilinosWrappers::MPI::Vector &      phi,
                        std::vector<bool> &                  released);
 
+    /// The mesh's part of the release by connectivity, which depends on
+    /// no field: the nodes of each cell (owned or ghost) and each
+    /// constraint's (node, master) pairs, by index within the locally
+    /// relevant nodes, the nodes on a wall, the flood's ghost vectors.
+    struct Connectivity
+    {
+      IndexSet                               relevant;
+      std::vector<std::vector<unsigned int>> cells;
+      std::vector<std::vector<unsigned int>> cells_of; // per node
+      std::vector<unsigned int>              wall_nodes;
+      TrilinosWrappers::MPI::Vector          shared; // writable ghosts
+      TrilinosWrappers::MPI::Vector          seen;   // ghosted
+      TrilinosWrappers::MPI::Vector          sum;    // owned
+    };
+
+    /// Build connectivity for the current mesh.
+    void
+    build_connectivity();
+
     /// Mass, centroid and bounding box of the release @p released (φ's
     /// loss, ghosted).
     void
@@ -170,6 +194,9 @@ namespace viscofilm
     /// only with Duration > 0).
     TrilinosWrappers::MPI::Vector                  clock;
     SolutionCarrier<dim, TrilinosWrappers::MPI::Vector> carrier;
+
+    /// Built at the first release on a mesh (doc/detachment.md).
+    std::optional<Connectivity> connectivity;
 
     double     step_mass         = 0;
     double     connectivity_mass = 0; // the part of step_mass cut off

@@ -52,10 +52,13 @@ namespace viscofilm
     /// threshold: φ's variation across the cell (interface), also φ itself
     /// (biofilm), the velocity error indicator (velocity); for coarsening
     /// those where all are below a quarter of it (if @p coarsen); within
-    /// the level bounds. Returns whether any cell was flagged (collective).
+    /// the level bounds. The φ indicators look at the detached fraction
+    /// @p detached (if not null) as at φ, each on its own. Returns whether
+    /// any cell was flagged (collective).
     bool
     flag_cells(parallel::distributed::Triangulation<dim> &triangulation,
                const VolumeFraction<dim> &              volume_fraction,
+               const VolumeFraction<dim> *              detached,
                const StokesSolver<dim> &                stokes,
                const bool                               coarsen,
                const InitialInput *                     input = nullptr) const;

@@ -57,6 +57,17 @@ namespace viscofilm
       double gls_parameter = 1.0;
     };
 
+    /// What the boundary carries: of a step, ∫_∂Ω φ u·n ds (net) and its
+    /// parts through faces where the flow leaves (outflow, u·n > 0) and
+    /// enters (inflow, as a positive number), periodic faces in neither;
+    /// summed over the accepted steps (× k), outflow and inflow since t = 0.
+    struct Exchange
+    {
+      double net     = 0;
+      double outflow = 0;
+      double inflow  = 0;
+    };
+
     /// @p name: the field's name in the snapshots. @p inflow_from_boundaries:
     /// φ takes each boundary's Volume fraction where the flow enters; false:
     /// 0 there (a second transported fraction, the detached biofilm, which
@@ -139,6 +150,16 @@ namespace viscofilm
     double
     integral() const;
 
+    /// What left and entered through the boundary since t = 0, by the
+    /// steps' fluxes k ∫_∂Ω φ^n u·n ds (u of the step's feet): ∫φ(t) +
+    /// outflow − inflow = ∫φ(0) up to the scheme's conservation error
+    /// (doc/detachment.md, "Mass balance").
+    Exchange
+    boundary_exchange() const;
+    /// A checkpoint's totals.
+    void
+    set_boundary_exchange(const Exchange &totals);
+
     /// Smallest and largest nodal value.
     std::pair<double, double>
     range() const;
@@ -194,8 +215,9 @@ namespace viscofilm
                  const TrilinosWrappers::MPI::Vector &lower,
                  const TrilinosWrappers::MPI::Vector &upper);
 
-    /// ∫_∂Ω φ u·n ds with the velocity @p velocity on @p stokes_dofs.
-    double
+    /// ∫_∂Ω φ u·n ds with the velocity @p velocity on @p stokes_dofs, and
+    /// its outflow and inflow parts.
+    Exchange
     boundary_flux(const DoFHandler<dim> &                     stokes_dofs,
                   const TrilinosWrappers::MPI::BlockVector &velocity) const;
 
@@ -227,6 +249,7 @@ namespace viscofilm
     TrilinosWrappers::MPI::Vector current_solution; // ghosted
     TrilinosWrappers::MPI::Vector old_solution;     // φ^n, for restore_old()
     double                        last_error_estimate = 0;
+    Exchange exchange, old_exchange; // since t = 0; at t_n, for restore_old()
     SolutionCarrier<dim, TrilinosWrappers::MPI::Vector> carrier;
   };
 } // namespace viscofilm
