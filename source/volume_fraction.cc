@@ -686,7 +686,7 @@ namespace viscofilm
               stokes_face[velocities].get_function_values(velocity_field, velocity);
               const bool periodic =
                 boundary_conditions.boundary(cell->face(f)->boundary_id()).type ==
-                BoundaryConditions::Type::periodic;
+                BoundaryConditions<dim>::Type::periodic;
               for (const unsigned int q : phi_face.quadrature_point_indices())
                 {
                   const double normal_velocity = velocity[q] * stokes_face.normal_vector(q);
