@@ -47,9 +47,9 @@ namespace viscofilm
                       "breakpoint is less than two steps ahead, the rest is "
                       "split into two equal steps (no sliver step). Bounds "
                       "every step, fixed, CFL-bound or error-controlled. A "
-                      "step across such a time is first order in every "
-                      "field, and samples a peak there (max|u| at the end "
-                      "of a plateau) O(k) early (doc/numerics.md, "
+                      "step across such a time is only first-order accurate "
+                      "whatever Order, and samples a peak there (max|u| at "
+                      "the end of a plateau) O(k) early (doc/numerics.md, "
                       "\"Breakpoints\"). Empty: none.");
     prm.declare_entry("Tolerance",
                       "0",
