@@ -81,10 +81,11 @@ def run_case(binary, prm_text, directory, ranks, reuse=False):
     """Run viscofilm on @p ranks ranks with prm_text (its Output/Directory must
     be @p directory) and return wall time [s], peak memory per rank [MiB] and
     the log. With reuse, a finished run in directory (run.log with the timer
-    table) is read instead of run again."""
+    table) is read instead of run again ("cached": True)."""
     os.makedirs(directory, exist_ok=True)
     log_file = os.path.join(directory, "run.log")
-    if not (reuse and os.path.exists(log_file) and "Total wallclock" in open(log_file).read()):
+    cached = reuse and os.path.exists(log_file) and "Total wallclock" in open(log_file).read()
+    if not cached:
         prm = os.path.join(directory, "case.prm")
         with open(prm, "w") as f:
             f.write(prm_text)
@@ -100,7 +101,7 @@ def run_case(binary, prm_text, directory, ranks, reuse=False):
     wall = float(re.search(r"benchmark wall time: ([0-9.]+) s", text).group(1))
     peak = re.search(r"Peak memory \(VmHWM\): ([0-9.]+) MiB on the largest rank", text)
     return {"wall": wall, "peak_mib": float(peak.group(1)) if peak else float("nan"),
-            "log": text}
+            "log": text, "cached": cached}
 
 
 def timer_section(log_text, section):

@@ -13,6 +13,26 @@
 
 namespace viscofilm
 {
+  namespace
+  {
+    /// max over φ's nodes of |η(φ_new) − η(φ_old)| / η(φ_old): how far the
+    /// viscosity moved.
+    double
+    viscosity_change(const Model &                        model,
+                     const TrilinosWrappers::MPI::Vector &old_phi,
+                     const TrilinosWrappers::MPI::Vector &new_phi)
+    {
+      double change = 0;
+      for (const auto i : new_phi.locally_owned_elements())
+        {
+          const double eta = model.viscosity(old_phi(i));
+          change = std::max(change, std::abs(model.viscosity(new_phi(i)) - eta) / eta);
+        }
+      return Utilities::MPI::max(change, new_phi.get_mpi_communicator());
+    }
+  } // namespace
+
+
   template <int dim>
   Problem<dim>::Problem(Parameters<dim> &parameters, const ParameterHandler &prm, MPI_Comm comm)
     : parameters(parameters)
@@ -333,7 +353,11 @@ namespace viscofilm
     //    b. c^{n+1,l} from ∇u^{n+1,l} (eq. 3.39-3.44, or the exponential
     //       trapezoid);
     //    c. Order 2: φ^{n+1,l} (eq. 3.45) from φ^n along (u^n + u^{n+1,l})/2,
-    //       and the matrix reassembled with η(φ^{n+1,l}). Order 1 (the thesis,
+    //       and the matrix reassembled with η(φ^{n+1,l}) while η moves by
+    //       more than the Picard tolerance (relative, at φ's nodes) from the
+    //       η the matrix has: below that the loop's u could not tell the
+    //       two matrices apart (doc/numerics.md, "Reassembly at Order 2";
+    //       the right-hand side is always of φ^{n+1,l}). Order 1 (the thesis,
     //       MODEL.md §3): φ after the loop with u^{n+1}, so the step's Stokes
     //       problem has η(φ^n) and s(φ^n), an O(k) lag (doc/numerics.md, "The
     //       coupled step at Order 2").
@@ -345,6 +369,11 @@ namespace viscofilm
       viscoelastic || (phi_in_loop && model.viscosity(0) != model.viscosity(1));
     const unsigned int max_picard =
       coupled ? parameters.time_stepping.max_picard_iterations : 1;
+    const double tolerance = parameters.time_stepping.picard_tolerance;
+    // Order 2: the φ of the Stokes matrix (the step's first: φ^n).
+    TrilinosWrappers::MPI::Vector matrix_phi;
+    if (phi_in_loop)
+      matrix_phi = volume_fraction.solution();
     for (unsigned int l = 1; l <= max_picard; ++l)
       {
         const TrilinosWrappers::MPI::BlockVector previous = stokes.solution();
@@ -363,7 +392,11 @@ namespace viscofilm
             if (l > 1)
               volume_fraction.restore_old(); // each iterate from φ^n
             report.transport_iterations += advance_volume_fraction(k);
-            stokes.invalidate_matrix();
+            if (viscosity_change(model, matrix_phi, volume_fraction.solution()) > tolerance)
+              {
+                stokes.invalidate_matrix();
+                matrix_phi = volume_fraction.solution();
+              }
           }
         if (!coupled)
           break;
@@ -371,7 +404,6 @@ namespace viscofilm
         // The first iterate is compared with u^n: iterate at least twice so
         // that the updated stress (and φ) has acted on the flow once. Both u
         // and τ must have settled, each relative to its own size.
-        const double tolerance = parameters.time_stepping.picard_tolerance;
         if (l > 1 && report.picard_velocity_change < tolerance &&
             report.picard_stress_change < tolerance)
           break;

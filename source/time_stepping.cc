@@ -1,3 +1,5 @@
+#include <deal.II/base/utilities.h>
+
 #include <viscofilm/input.h>
 #include <viscofilm/time_stepping.h>
 
@@ -35,6 +37,20 @@ namespace viscofilm
                       "transport and the Res ∂u/∂t term: 1 (the thesis' "
                       "scheme) or 2 (doc/numerics.md, \"Second order in "
                       "time\").");
+    prm.declare_entry("Breakpoints",
+                      "",
+                      Patterns::List(Patterns::Double(0)),
+                      "Times (comma-separated, units of T0) where the "
+                      "boundary data or forcing change non-smoothly, e.g. "
+                      "the ends of an inflow ramp: no step straddles one. A "
+                      "step that would is shortened to end there; when the "
+                      "breakpoint is less than two steps ahead, the rest is "
+                      "split into two equal steps (no sliver step). Bounds "
+                      "every step, fixed, CFL-bound or error-controlled. A "
+                      "step across such a time is only first-order accurate "
+                      "whatever Order, and samples a peak there (max|u| at "
+                      "the end of a plateau) O(k) early (doc/numerics.md, "
+                      "\"Breakpoints\"). Empty: none.");
     prm.declare_entry("Tolerance",
                       "0",
                       Patterns::Double(0),
@@ -90,6 +106,9 @@ namespace viscofilm
     n_steps   = prm.get_integer("Number of steps");
     cfl                   = prm.get_double("CFL number");
     order                 = prm.get_integer("Order");
+    breakpoints =
+      Utilities::string_to_double(Utilities::split_string_list(prm.get("Breakpoints")));
+    std::sort(breakpoints.begin(), breakpoints.end());
     tolerance             = prm.get_double("Tolerance");
     safety_factor         = prm.get_double("Safety factor");
     max_growth            = prm.get_double("Maximum growth");
@@ -125,6 +144,19 @@ namespace viscofilm
       k = std::min(k, cfl * cell_size / max_speed);
     if (proposed > 0)
       k = std::min(k, proposed);
+    // The first breakpoint after t (one the last step landed on, up to
+    // round-off, is behind).
+    const auto next = std::upper_bound(breakpoints.begin(),
+                                       breakpoints.end(),
+                                       time + 1e-9 * time_step);
+    if (next != breakpoints.end())
+      {
+        const double rest = *next - time;
+        if (rest <= k * (1 + 1e-9))
+          k = rest;
+        else if (rest < 2 * k)
+          k = rest / 2;
+      }
     return std::min(k, n_steps * time_step - time);
   }
 

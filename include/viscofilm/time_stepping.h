@@ -4,6 +4,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <vector>
+
 namespace viscofilm
 {
   using namespace dealii;
@@ -19,8 +21,10 @@ namespace viscofilm
     /// The length of the step from @p time: Time step, or with CFL number
     /// > 0 at most cfl × @p cell_size / @p max_speed (max|u^n|, the velocity
     /// the departure feet follow; @p cell_size the smallest cell edge), at
-    /// most @p proposed (the controller's step; 0: none), and ending at the
-    /// end time n_steps × time_step at the latest.
+    /// most @p proposed (the controller's step; 0: none), shortened to land
+    /// on the next breakpoint (the rest split in two equal steps when it is
+    /// less than two steps), and ending at the end time n_steps × time_step
+    /// at the latest.
     double
     step_length(const double time,
                 const double max_speed,
@@ -51,6 +55,9 @@ namespace viscofilm
     double       cfl = 0;
     /// Order of accuracy in k of the stress, φ and inertia updates: 1 or 2.
     unsigned int order = 1;
+    /// Times the steps land on (sorted): where the boundary data's time
+    /// derivative jumps, which a step must not straddle.
+    std::vector<double> breakpoints;
 
     /// Error control (doc/numerics.md, "Error-controlled time steps"):
     /// tolerance on the local error estimate, 0 = off.
