@@ -1,7 +1,5 @@
 #include <deal.II/base/mpi.h>
 
-#include <deal.II/fe/mapping_q1.h>
-
 #include <deal.II/grid/grid_tools.h>
 
 #include <deal.II/matrix_free/fe_point_evaluation.h>
@@ -9,6 +7,7 @@
 #include <viscofilm/dof_cell.h>
 #include <viscofilm/boundary_conditions.h>
 #include <viscofilm/departure_feet.h>
+#include <viscofilm/geometry.h>
 #include <viscofilm/input.h>
 
 #include <algorithm>
@@ -21,14 +20,7 @@ namespace viscofilm
   {
     // Reference-cell distance within which a point counts as in a cell: the
     // default of RemotePointEvaluation, so that both paths agree.
-    constexpr double unit_tolerance = 1e-6;
-
-    const Mapping<dim> &
-    mapping()
-    {
-      return StaticMappingQ1<dim>::mapping;
-    }
-  } // namespace
+    constexpr double unit_tolerance = 1e-6;  } // namespace
 
 
   PointEvaluator::PointEvaluator(
@@ -49,7 +41,7 @@ namespace viscofilm
     {
       try
         {
-          return mapping().transform_real_to_unit_cell(cell, p);
+          return Geometry::mapping(cell->get_triangulation()).transform_real_to_unit_cell(cell, p);
         }
       catch (const Mapping<dim>::ExcTransformationFailed &)
         {
@@ -117,7 +109,8 @@ namespace viscofilm
         Point<dim> unit_exit = unit_a + exit * (unit_b - unit_a);
         unit_exit[face / 2]  = face % 2;
         unit_exit = GeometryInfo<dim>::project_to_unit_cell(unit_exit);
-        const Point<dim> crossing = mapping().transform_unit_to_real_cell(cell, unit_exit);
+        const Point<dim> crossing =
+          Geometry::mapping(triangulation).transform_unit_to_real_cell(cell, unit_exit);
 
         Triangulation<dim>::cell_iterator next;
         if (cell->has_periodic_neighbor(face))
@@ -204,7 +197,7 @@ namespace viscofilm
         std::vector<Point<dim>> remote_locations;
         for (const unsigned int i : remote_points)
           remote_locations.push_back(located[i]);
-        remote.reinit(remote_locations, triangulation, mapping());
+        remote.reinit(remote_locations, triangulation, Geometry::mapping(triangulation));
       }
   }
 
@@ -297,7 +290,7 @@ namespace viscofilm
                     const DoFHandler<dim> &                     stokes_dofs,
                     const TrilinosWrappers::MPI::BlockVector &stokes_solution)
   {
-    FEPointEvaluation<dim, dim> velocity(mapping(),
+    FEPointEvaluation<dim, dim> velocity(Geometry::mapping(stokes_dofs.get_triangulation()),
                                      stokes_dofs.get_fe(),
                                      update_values | update_gradients,
                                      0);
@@ -507,7 +500,7 @@ namespace viscofilm
     // VolumeFraction's inflow faces (inflow_threshold).
     max_speed = Utilities::MPI::max(max_speed, comm);
     inflow.assign(points.size(), numbers::invalid_boundary_id);
-    FEPointEvaluation<dim, dim> velocity(mapping(),
+    FEPointEvaluation<dim, dim> velocity(Geometry::mapping(triangulation),
                                          stokes_dofs.get_fe(),
                                          update_values | update_gradients,
                                          0);

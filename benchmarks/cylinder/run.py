@@ -60,9 +60,9 @@ ETA_P = 0.41
 POLL_SECONDS = 2.0
 
 
-def case_prm(directory, level, wi, time_step, steps):
+def case_prm(directory, level, wi, time_step, steps, order=None):
     """The parameters of one run: prm/cylinder.prm with the mesh level, Wi,
-    the time step and the output directory replaced."""
+    the time step (and its order, if given) and the output directory replaced."""
     if wi == 0:
         model = """subsection Model
   set Viscoelastic = false
@@ -103,13 +103,14 @@ end
 subsection Time stepping
   set Time step       = %r
   set Number of steps = %d
-end
+%send
 subsection Output
   set Directory = %s
   set Interval  = 0
 end
 """ % (os.path.join(REPO, "prm", "cylinder.prm"), level, model, constants, constants,
-       time_step, steps, directory)
+       time_step, steps, "" if order is None else "  set Order           = %d\n" % order,
+       directory)
 
 
 def force_column(row):
@@ -245,6 +246,8 @@ def main():
     parser.add_argument("--wi", default="0,0.1,0.2,0.3,0.4,0.5,0.6,0.7")
     parser.add_argument("--time-step", type=float, default=0.04,
                         help="time step on the coarsest level (halved per level)")
+    parser.add_argument("--order", type=int, choices=(1, 2),
+                        help="Time stepping/Order (default: prm/cylinder.prm's)")
     parser.add_argument("--tolerance", type=float, default=1e-5)
     parser.add_argument("--np", type=int, default=2)
     parser.add_argument("--work", default=os.path.join(SCRIPT_DIR, "runs"))
@@ -279,7 +282,7 @@ def main():
         steps = 1 if wi == 0 else math.ceil(end_time / k)
         directory = os.path.join(arguments.work, "level%d-Wi%g" % (level, wi))
         results[(level, wi)] = run_to_steady_state(
-            binary, arguments.np, directory, case_prm(directory, level, wi, k, steps), window,
+            binary, arguments.np, directory, case_prm(directory, level, wi, k, steps, arguments.order), window,
             arguments.tolerance)
         result = results[(level, wi)]
         walls[(level, wi)] = result["wall"]
