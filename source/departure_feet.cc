@@ -1,7 +1,5 @@
 #include <deal.II/base/mpi.h>
 
-#include <deal.II/fe/mapping_q1.h>
-
 #include <deal.II/grid/grid_tools.h>
 
 #include <deal.II/matrix_free/fe_point_evaluation.h>
@@ -9,6 +7,7 @@
 #include <viscofilm/dof_cell.h>
 #include <viscofilm/boundary_conditions.h>
 #include <viscofilm/departure_feet.h>
+#include <viscofilm/geometry.h>
 #include <viscofilm/input.h>
 
 #include <algorithm>
@@ -22,13 +21,6 @@ namespace viscofilm
     // Reference-cell distance within which a point counts as in a cell: the
     // default of RemotePointEvaluation, so that both paths agree.
     constexpr double unit_tolerance = 1e-6;
-
-    template <int dim>
-    const Mapping<dim> &
-    mapping()
-    {
-      return StaticMappingQ1<dim>::mapping;
-    }
   } // namespace
 
 
@@ -52,7 +44,7 @@ namespace viscofilm
     {
       try
         {
-          return mapping<dim>().transform_real_to_unit_cell(cell, p);
+          return Geometry<dim>::mapping(cell->get_triangulation()).transform_real_to_unit_cell(cell, p);
         }
       catch (const typename Mapping<dim>::ExcTransformationFailed &)
         {
@@ -121,7 +113,8 @@ namespace viscofilm
         Point<dim> unit_exit = unit_a + exit * (unit_b - unit_a);
         unit_exit[face / 2]  = face % 2;
         unit_exit = GeometryInfo<dim>::project_to_unit_cell(unit_exit);
-        const Point<dim> crossing = mapping<dim>().transform_unit_to_real_cell(cell, unit_exit);
+        const Point<dim> crossing =
+          Geometry<dim>::mapping(triangulation).transform_unit_to_real_cell(cell, unit_exit);
 
         typename Triangulation<dim>::cell_iterator next;
         if (cell->has_periodic_neighbor(face))
@@ -209,7 +202,7 @@ namespace viscofilm
         std::vector<Point<dim>> remote_locations;
         for (const unsigned int i : remote_points)
           remote_locations.push_back(located[i]);
-        remote.reinit(remote_locations, triangulation, mapping<dim>());
+        remote.reinit(remote_locations, triangulation, Geometry<dim>::mapping(triangulation));
       }
   }
 
@@ -294,7 +287,7 @@ namespace viscofilm
                     const DoFHandler<dim> &                     stokes_dofs,
                     const TrilinosWrappers::MPI::BlockVector &stokes_solution)
   {
-    FEPointEvaluation<dim, dim> velocity(mapping<dim>(),
+    FEPointEvaluation<dim, dim> velocity(Geometry<dim>::mapping(stokes_dofs.get_triangulation()),
                                      stokes_dofs.get_fe(),
                                      update_values | update_gradients,
                                      0);
@@ -509,7 +502,7 @@ namespace viscofilm
     // VolumeFraction's inflow faces (inflow_threshold).
     max_speed = Utilities::MPI::max(max_speed, comm);
     inflow.assign(points.size(), numbers::invalid_boundary_id);
-    FEPointEvaluation<dim, dim> velocity(mapping<dim>(),
+    FEPointEvaluation<dim, dim> velocity(Geometry<dim>::mapping(triangulation),
                                          stokes_dofs.get_fe(),
                                          update_values | update_gradients,
                                          0);

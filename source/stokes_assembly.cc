@@ -11,6 +11,7 @@
 #include <deal.II/lac/full_matrix.h>
 
 #include <viscofilm/dof_cell.h>
+#include <viscofilm/geometry.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/stokes_linear_solver.h>
 
@@ -63,16 +64,20 @@ namespace viscofilm
     system_rhs = 0;
 
     const Quadrature<dim> quadrature = this->quadrature();
-    FEValues<dim>     fe_values(fe,
+    const Mapping<dim> &  mapping    = Geometry<dim>::mapping(triangulation);
+    FEValues<dim>     fe_values(mapping,
+                          fe,
                           quadrature,
                           update_values | update_gradients |
                             update_quadrature_points | update_JxW_values);
-    FEValues<dim>     phi_fe_values(coefficients.volume_fraction_dof_handler->get_fe(),
+    FEValues<dim>     phi_fe_values(mapping,
+                              coefficients.volume_fraction_dof_handler->get_fe(),
                               quadrature,
                               update_values);
     // The prescribed normal traction −P n of pressure boundaries.
     const QGauss<dim - 1> face_quadrature(fe.degree + 1);
-    FEFaceValues<dim>     fe_face_values(fe,
+    FEFaceValues<dim>     fe_face_values(mapping,
+                                     fe,
                                      face_quadrature,
                                      update_values | update_normal_vectors |
                                        update_quadrature_points | update_JxW_values);
@@ -290,7 +295,7 @@ namespace viscofilm
     previous_velocity_at_feet.clear();
     if (model.density == 0)
       return;
-    FEValues<dim> fe_values(fe, quadrature(), update_quadrature_points);
+    FEValues<dim> fe_values(Geometry<dim>::mapping(triangulation), fe, quadrature(), update_quadrature_points);
     std::vector<Point<dim>>                               points;
     std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
     for (const auto &cell : dofs.active_cell_iterators())

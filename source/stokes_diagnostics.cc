@@ -7,6 +7,7 @@
 
 #include <deal.II/numerics/error_estimator.h>
 
+#include <viscofilm/geometry.h>
 #include <viscofilm/stokes.h>
 
 #include <cmath>
@@ -125,7 +126,10 @@ namespace viscofilm
   StokesSolver<dim>::max_cell_divergence() const
   {
     const QGauss<dim>                  quadrature(fe.degree + 1);
-    FEValues<dim>                      fe_values(fe, quadrature, update_gradients | update_JxW_values);
+    FEValues<dim>                      fe_values(Geometry<dim>::mapping(triangulation),
+                                               fe,
+                                               quadrature,
+                                               update_gradients | update_JxW_values);
     std::vector<double>              divergence(quadrature.size());
     const FEValuesExtractors::Vector velocities(0);
     double                           max_divergence = 0;
@@ -165,7 +169,10 @@ namespace viscofilm
   {
     // ‖u − u_prev‖_L2 / ‖u‖_L2: the velocity alone, as the pressure's size
     // (which grows with the viscosity) says nothing about the flow's change.
-    FEValues<dim> fe_values(fe, quadrature(), update_values | update_JxW_values);
+    FEValues<dim> fe_values(Geometry<dim>::mapping(triangulation),
+                            fe,
+                            quadrature(),
+                            update_values | update_JxW_values);
     const FEValuesExtractors::Vector velocities(0);
     std::vector<Tensor<1, dim>>        now(fe_values.n_quadrature_points);
     std::vector<Tensor<1, dim>>        before(fe_values.n_quadrature_points);

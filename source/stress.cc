@@ -9,6 +9,7 @@
 #include <deal.II/matrix_free/fe_point_evaluation.h>
 
 #include <viscofilm/dof_cell.h>
+#include <viscofilm/geometry.h>
 #include <viscofilm/input.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/stress.h>
@@ -258,7 +259,7 @@ namespace viscofilm
                 continue;
               node_of_owned_dof[owned.index_within_set(dof)] = nodes.size();
               Node node;
-              node.position = StaticMappingQ1<dim>::mapping.transform_unit_to_real_cell(
+              node.position = Geometry<dim>::mapping(triangulation).transform_unit_to_real_cell(
                 cell, unit_support[k]);
               node.cell = cell;
               for (unsigned int c = 0; c < n_symmetric_components<dim>; ++c)
@@ -280,7 +281,10 @@ namespace viscofilm
     // The outward normal of face f (normal to the unit axis f/2) at a
     // point: ±(row f/2 of the inverse Jacobian), normalised.
     const Quadrature<dim> at_nodes(fe.base_element(0).get_unit_support_points());
-    FEValues<dim>         geometry(fe, at_nodes, update_inverse_jacobians);
+    FEValues<dim>         geometry(Geometry<dim>::mapping(triangulation),
+                                   fe,
+                                   at_nodes,
+                                   update_inverse_jacobians);
     const auto no_slip = [this](const auto &face) {
       return face->at_boundary() && boundary_conditions.boundary(face->boundary_id()).type ==
                                       BoundaryConditions<dim>::Type::no_slip;
@@ -381,7 +385,7 @@ namespace viscofilm
     const double       this_rank = Utilities::MPI::this_mpi_process(comm);
     const bool         guard     = parameters.positivity_safe_feet && model.relaxed_conformation() > 0;
     unsigned int       fixes     = 0;
-    FEPointEvaluation<n_symmetric_components<dim>, dim> conformation(StaticMappingQ1<dim>::mapping, fe, update_values, 0);
+    FEPointEvaluation<n_symmetric_components<dim>, dim> conformation(Geometry<dim>::mapping(triangulation), fe, update_values, 0);
     std::vector<double>     cell_values(fe.n_dofs_per_cell());
 
     // The foot's c, and the rank that evaluated it (to count remote feet).
@@ -502,8 +506,9 @@ namespace viscofilm
     // At the feet in the layout of evaluate_velocity(): ∂u_d/∂x_e at
     // [dim + dim d + e]; φ^n at [0].
     const FiniteElement<dim> &phi_fe = volume_fraction.dof_handler().get_fe();
-    FEPointEvaluation<1, dim> phi(StaticMappingQ1<dim>::mapping, phi_fe, update_values);
-    FEPointEvaluation<n_symmetric_components<dim>, dim> gradient_values(StaticMappingQ1<dim>::mapping,
+    const Mapping<dim> &      mapping = Geometry<dim>::mapping(triangulation);
+    FEPointEvaluation<1, dim> phi(mapping, phi_fe, update_values);
+    FEPointEvaluation<n_symmetric_components<dim>, dim> gradient_values(mapping,
                                                                    fe,
                                                                    update_values);
     std::vector<double> phi_dofs(phi_fe.n_dofs_per_cell());
@@ -577,7 +582,10 @@ namespace viscofilm
   ElasticStress<dim>::nodal_velocity_gradient(const StokesSolver<dim> &stokes) const
   {
     const Quadrature<dim> at_nodes(fe.base_element(0).get_unit_support_points());
-    FEValues<dim> stokes_values(stokes.dof_handler().get_fe(), at_nodes, update_gradients);
+    FEValues<dim> stokes_values(Geometry<dim>::mapping(triangulation),
+                                stokes.dof_handler().get_fe(),
+                                at_nodes,
+                                update_gradients);
     const FEValuesExtractors::Vector velocities(0);
     std::vector<Tensor<2, dim>>        gradients(at_nodes.size());
     std::vector<Tensor<2, dim>>        velocity_gradient(nodes.size());
@@ -719,7 +727,10 @@ namespace viscofilm
   {
     // ‖Δτ‖_L2 / ‖τ‖_L2 with the Frobenius norm; Δτ = G Δc, but τ's own size,
     // not c's (which includes the relaxed state), is the scale.
-    FEValues<dim> fe_values(fe, stokes_quadrature, update_values | update_JxW_values);
+    FEValues<dim> fe_values(Geometry<dim>::mapping(triangulation),
+                            fe,
+                            stokes_quadrature,
+                            update_values | update_JxW_values);
     FEValues<dim> phi_values(volume_fraction.dof_handler().get_fe(),
                            stokes_quadrature,
                            update_values);

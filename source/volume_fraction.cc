@@ -4,7 +4,7 @@
 
 #include <deal.II/fe/fe_q_iso_q1.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/fe/mapping.h>
 
 #include <deal.II/numerics/vector_tools.h>
 
@@ -15,6 +15,7 @@
 
 #include <viscofilm/dof_cell.h>
 #include <viscofilm/departure_feet.h>
+#include <viscofilm/geometry.h>
 #include <viscofilm/input.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/volume_fraction.h>
@@ -445,7 +446,7 @@ namespace viscofilm
               {
                 seen[owned.index_within_set(local_dofs[i])] = true;
                 nodes.push_back(
-                  StaticMappingQ1<dim>::mapping.transform_unit_to_real_cell(cell, unit_support[i]));
+                  Geometry<dim>::mapping(dofs.get_triangulation()).transform_unit_to_real_cell(cell, unit_support[i]));
                 cells.push_back(cell);
                 node_dofs.push_back(local_dofs[i]);
               }

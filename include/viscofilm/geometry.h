@@ -10,6 +10,8 @@
 
 #include <deal.II/distributed/tria.h>
 
+#include <deal.II/fe/mapping.h>
+
 #include <deal.II/grid/tria.h>
 
 #include <viscofilm/dimension.h>
@@ -77,6 +79,14 @@ namespace viscofilm
     /// the channel, the smallest coarse edge refined for the other meshes.
     double
     initial_cell_size() const;
+
+    /// The map from the reference cell of every cell of @p triangulation,
+    /// for every field and every position (FEValues, nodes, feet, forces):
+    /// quadratic (MappingQ(2)) if the coarse mesh has a curved manifold
+    /// (the cylinder), else bilinear (MappingQ1, the channel and gmsh
+    /// meshes: their results are those of deal.II's default mapping).
+    static const Mapping<dim> &
+    mapping(const Triangulation<dim> &triangulation);
 
     Mesh         mesh = Mesh::channel;
     /// The channel's corners; for a gmsh mesh its bounding box.

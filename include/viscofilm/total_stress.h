@@ -12,6 +12,7 @@
 
 #include <viscofilm/dimension.h>
 #include <viscofilm/dof_cell.h>
+#include <viscofilm/geometry.h>
 #include <viscofilm/model.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/stress.h>
@@ -66,14 +67,19 @@ namespace viscofilm
       , stokes(stokes)
       , volume_fraction(volume_fraction)
       , stress(stress)
-      , stokes_values(stokes.dof_handler().get_fe(),
+      , stokes_values(Geometry::mapping(stokes.dof_handler().get_triangulation()),
+                      stokes.dof_handler().get_fe(),
                       quadrature,
                       update_values | update_gradients | update_JxW_values |
                         extra_flags)
-      , phi_values(volume_fraction.dof_handler().get_fe(),
+      , phi_values(Geometry::mapping(stokes.dof_handler().get_triangulation()),
+                   volume_fraction.dof_handler().get_fe(),
                    quadrature,
                    update_values | update_gradients)
-      , stress_values(stress.dof_handler().get_fe(), quadrature, update_values)
+      , stress_values(Geometry::mapping(stokes.dof_handler().get_triangulation()),
+                      stress.dof_handler().get_fe(),
+                      quadrature,
+                      update_values)
       , sigma(quadrature.size())
       , phi(quadrature.size())
       , grad_phi(quadrature.size())
