@@ -67,16 +67,16 @@ namespace viscofilm
       , stokes(stokes)
       , volume_fraction(volume_fraction)
       , stress(stress)
-      , stokes_values(Geometry::mapping(stokes.dof_handler().get_triangulation()),
+      , stokes_values(Geometry<dim>::mapping(stokes.dof_handler().get_triangulation()),
                       stokes.dof_handler().get_fe(),
                       quadrature,
                       update_values | update_gradients | update_JxW_values |
                         extra_flags)
-      , phi_values(Geometry::mapping(stokes.dof_handler().get_triangulation()),
+      , phi_values(Geometry<dim>::mapping(stokes.dof_handler().get_triangulation()),
                    volume_fraction.dof_handler().get_fe(),
                    quadrature,
                    update_values | update_gradients)
-      , stress_values(Geometry::mapping(stokes.dof_handler().get_triangulation()),
+      , stress_values(Geometry<dim>::mapping(stokes.dof_handler().get_triangulation()),
                       stress.dof_handler().get_fe(),
                       quadrature,
                       update_values)
