@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Run a small bulb case, draw its figures with postprocess/plot_run.py and
-check them: the figures exist, and the peak speed the script reads from the
+check them: the figures exist (also plot_pillar.py's close-up and outlines over
+time, selected by time), and the peak speed the script reads from the
 HDF5 snapshot equals max_velocity that the simulator wrote to statistics.csv
 (both at the Q2 nodes), to the 7 digits it prints.
 usage: check_postprocess.py VISCOFILM SOURCE_DIR WORKDIR"""
@@ -38,5 +39,14 @@ if len(figures) < 10 or not match:
 if abs(float(match.group(1)) - expected) > 1e-6 * expected:
     print("FAILED: plot_run.py reads max|u| = %s, statistics.csv has %r"
           % (match.group(1), expected))
+    sys.exit(1)
+pillar = subprocess.run(["/usr/bin/python3", os.path.join(source, "postprocess", "plot_pillar.py"),
+                         "run", "--centre", "0.5,0.2", "--half-width", "0.3", "--times", "0,0.006",
+                         "--out", "close_up.png", "--shapes", "shapes.png"],
+                        cwd=workdir, capture_output=True, text=True)
+print(pillar.stdout, pillar.stderr)
+missing = [f for f in ("close_up.png", "shapes.png") if not os.path.isfile(os.path.join(workdir, f))]
+if pillar.returncode != 0 or missing:
+    print("FAILED: plot_pillar.py exited with %d, missing %s" % (pillar.returncode, missing))
     sys.exit(1)
 print("PASSED: %d figures; max|u| = %s as in statistics.csv" % (len(figures), match.group(1)))
