@@ -21,6 +21,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace viscofilm
 {
@@ -127,6 +128,8 @@ namespace viscofilm
     Detachment<dim>                         detachment;
     Output<dim>                             output;
     Checkpoint<dim>                         checkpoint;
+    /// Every field, for the life cycle (FieldBase): u and p, c, φ, φ_d.
+    std::vector<FieldBase<dim> *>           fields;
   };
 } // namespace viscofilm
 
