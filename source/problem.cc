@@ -34,7 +34,7 @@ namespace viscofilm
 
 
   template <int dim>
-  Problem<dim>::Problem(Parameters<dim> &parameters, const ParameterHandler &prm, MPI_Comm comm)
+  Problem<dim>::Problem(const Parameters<dim> &parameters, const ParameterHandler &prm, MPI_Comm comm)
     : parameters(parameters)
     , prm(prm)
     , mpi_communicator(comm)
@@ -264,9 +264,7 @@ namespace viscofilm
       pcout << "Adapted mesh: " << triangulation.n_global_active_cells()
             << " cells, " << stokes.n_dofs() << " Stokes dofs, smallest Δx = "
             << min_cell_size << std::endl;
-    parameters.initial_conditions.stress.function().set_time(0);
-    stress.set_initial_conditions(parameters.initial_conditions.stress.function(),
-                                  volume_fraction);
+    stress.set_initial_conditions(parameters.initial_conditions.stress.at(0), volume_fraction);
     stokes.invalidate_matrix();
     // Order 2 with Res = 0: u^0 is the flow of the initial state and the
     // boundary data at t = 0 (the solver's u = 0 is none: the first step's
@@ -295,7 +293,7 @@ namespace viscofilm
       time_step,
       &volume_fraction.dof_handler(),
       &volume_fraction.solution(),
-      &parameters.verification.body_force.function(),
+      &parameters.verification.body_force,
       [this](const typename DoFHandler<dim>::active_cell_iterator &cell,
              const std::vector<double> &                phi,
              std::vector<SymmetricTensor<2, dim>> &       tau) {

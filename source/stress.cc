@@ -447,9 +447,7 @@ namespace viscofilm
             // The characteristic enters through boundary inflow[i]: its
             // Stress at the cut, at t_n like c^n at the other feet, and its
             // volume fraction there.
-            FunctionParser<dim> &stress = boundary_conditions.boundary(inflow[i]).stress.function();
-            stress.set_time(time);
-            stress.vector_value(at_feet[i], tau);
+            boundary_conditions.boundary(inflow[i]).stress.vector_value(at_feet[i], time, tau);
             nodes[i].foot_conformation = ElasticStress<dim>::conformation(
               tau, boundary_conditions.boundary(inflow[i]).volume_fraction);
           }

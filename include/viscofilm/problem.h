@@ -32,7 +32,7 @@ namespace viscofilm
   {
   public:
     /// @p prm is kept to write the parameters used next to the results.
-    Problem(Parameters<dim> &parameters, const ParameterHandler &prm, MPI_Comm comm);
+    Problem(const Parameters<dim> &parameters, const ParameterHandler &prm, MPI_Comm comm);
 
     /// Run all time steps; throws with the step and time on failure.
     void
@@ -107,7 +107,7 @@ namespace viscofilm
     void
     write_statistics(const unsigned int step, const double time, const StepReport &report);
 
-    Parameters<dim> &       parameters;
+    const Parameters<dim> &parameters;
     double                  time_step     = 0; // of the current step
     double                  step_cfl      = 0; // its max|u^n| k / Δx
     double                  min_cell_size = 0; // smallest cell edge

@@ -136,7 +136,7 @@ namespace viscofilm
       double                          time_step;
       const DoFHandler<dim> *           volume_fraction_dof_handler;
       const TrilinosWrappers::MPI::Vector *volume_fraction;
-      Function<dim> *                   body_force; // set_time() is called
+      const ParsedExpression<dim> *     body_force; // at time
       ElasticStress                        elastic_stress;
     };
 
