@@ -418,14 +418,6 @@ namespace viscofilm
 
 
   template <int dim>
-  const TrilinosWrappers::MPI::BlockVector &
-  StokesSolver<dim>::previous_solution() const
-  {
-    return older_solution;
-  }
-
-
-  template <int dim>
   double
   StokesSolver<dim>::previous_time_step() const
   {

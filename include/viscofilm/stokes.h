@@ -190,11 +190,6 @@ namespace viscofilm
     void
     advance_time() override;
 
-    /// u^{n-1} with ghost values (Order = 2; kept through mesh changes and
-    /// checkpoints like u^n); valid while previous_time_step() > 0.
-    const TrilinosWrappers::MPI::BlockVector &
-    previous_solution() const;
-
     /// k_{n-1} = t_n − t_{n-1}, or 0 when there is no u^{n-1}.
     double
     previous_time_step() const;
