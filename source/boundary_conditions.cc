@@ -232,8 +232,8 @@ namespace viscofilm
             (boundary.type == Type::outflow ? Type::pressure : boundary.type);
           if (boundary_type != type)
             continue;
-          boundary.velocity.function().set_time(time);
-          const StokesVelocity<dim> velocity(boundary.velocity.function());
+          const ExpressionAt<dim>   velocity_now = boundary.velocity.at(time);
+          const StokesVelocity<dim> velocity(velocity_now);
 
           if (type == Type::slip && boundary.normal_axis < 0)
             VectorTools::compute_no_normal_flux_constraints(dof_handler,
@@ -244,7 +244,7 @@ namespace viscofilm
             {
               // Tangential velocity on a boundary not normal to an axis.
               const std::map<types::boundary_id, const Function<dim> *> values = {
-                {boundary.id, &boundary.velocity.function()}};
+                {boundary.id, &velocity_now}};
               VectorTools::compute_nonzero_tangential_flux_constraints(
                 dof_handler, 0, {boundary.id}, values, constraints);
             }

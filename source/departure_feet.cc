@@ -274,14 +274,6 @@ namespace viscofilm
   }
 
   template <int dim>
-  unsigned int
-  PointEvaluator<dim>::n_remote_points() const
-  {
-    return remote_points.size();
-  }
-
-
-  template <int dim>
   std::vector<std::array<double, n_velocity_values<dim>>>
   evaluate_velocity(const PointEvaluator<dim> &                    points,
                     const DoFHandler<dim> &                     stokes_dofs,

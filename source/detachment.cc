@@ -100,26 +100,17 @@ namespace viscofilm
     , stress(stress)
     , boundary_conditions(boundary_conditions)
     , detached(triangulation, transport, boundary_conditions, "phi_detached", false)
-  {}
+  {
+    if (parameters.enabled && parameters.duration > 0)
+      volume_fraction.carry(clock);
+  }
 
 
   template <int dim>
   void
   Detachment<dim>::setup_dofs()
   {
-    if (!parameters.enabled)
-      return;
-    detached.setup_dofs();
-    setup_clock();
-    connectivity.reset();
-  }
-
-
-  template <int dim>
-  void
-  Detachment<dim>::setup_clock()
-  {
-    if (parameters.duration == 0)
+    if (!parameters.enabled || parameters.duration == 0)
       return;
     const DoFHandler<dim> &dofs = volume_fraction.dof_handler();
     clock.reinit(dofs.locally_owned_dofs(),
@@ -366,7 +357,7 @@ namespace viscofilm
                                  std::vector<bool> &                  released)
   {
     // The graph and the ghost vectors depend on the mesh only: built once
-    // per mesh (cleared by setup_dofs() and finish_refinement()).
+    // per mesh (cleared by mesh_changed()).
     if (!connectivity)
       build_connectivity();
     Connectivity &         graph    = *connectivity;
@@ -539,6 +530,22 @@ namespace viscofilm
 
 
   template <int dim>
+  VolumeFraction<dim> *
+  Detachment<dim>::detached_fraction()
+  {
+    return parameters.enabled ? &detached : nullptr;
+  }
+
+
+  template <int dim>
+  void
+  Detachment<dim>::mesh_changed()
+  {
+    connectivity.reset();
+  }
+
+
+  template <int dim>
   typename Detachment<dim>::Totals
   Detachment<dim>::totals() const
   {
@@ -551,59 +558,6 @@ namespace viscofilm
   Detachment<dim>::set_totals(const Totals &totals)
   {
     total = totals;
-  }
-
-
-  template <int dim>
-  void
-  Detachment<dim>::prepare_for_refinement()
-  {
-    if (!parameters.enabled)
-      return;
-    if (clock.size() > 0)
-      carrier.prepare(volume_fraction.dof_handler(), clock);
-    detached.prepare_for_refinement();
-  }
-
-
-  template <int dim>
-  void
-  Detachment<dim>::finish_refinement()
-  {
-    if (!parameters.enabled)
-      return;
-    if (parameters.duration > 0)
-      {
-        const DoFHandler<dim> &       dofs = volume_fraction.dof_handler();
-        TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
-                                                  dofs.get_communicator());
-        carrier.finish(dofs, distributed);
-        setup_clock();
-        clock = distributed;
-      }
-    detached.finish_refinement();
-    connectivity.reset();
-  }
-
-
-  template <int dim>
-  void
-  Detachment<dim>::prepare_for_checkpoint()
-  {
-    if (!parameters.enabled)
-      return;
-    if (clock.size() > 0)
-      carrier.prepare_checkpoint(volume_fraction.dof_handler(), clock);
-    detached.prepare_for_checkpoint();
-  }
-
-
-  template <int dim>
-  void
-  Detachment<dim>::checkpoint_written()
-  {
-    carrier.release();
-    detached.checkpoint_written();
   }
 
 

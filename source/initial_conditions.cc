@@ -102,7 +102,7 @@ namespace viscofilm
   {
     if (from_image)
       return image.volume_fraction();
-    return volume_fraction.function();
+    return volume_fraction_at_start;
   }
 
   VISCOFILM_INSTANTIATE(InitialConditions)

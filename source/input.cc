@@ -199,11 +199,59 @@ namespace viscofilm
 
 
   template <int dim>
-  FunctionParser<dim> &
-  ParsedExpression<dim>::function() const
+  double
+  ParsedExpression<dim>::value(const Point<dim> & point,
+                               const double       time,
+                               const unsigned int component) const
   {
     Assert(parser, ExcInternalError());
-    return *parser;
+    parser->set_time(time);
+    return parser->value(point, component);
+  }
+
+
+  template <int dim>
+  void
+  ParsedExpression<dim>::vector_value(const Point<dim> &point,
+                                      const double      time,
+                                      Vector<double> &  values) const
+  {
+    Assert(parser, ExcInternalError());
+    parser->set_time(time);
+    parser->vector_value(point, values);
+  }
+
+
+  template <int dim>
+  ExpressionAt<dim>
+  ParsedExpression<dim>::at(const double time) const
+  {
+    return ExpressionAt<dim>(*this, n_components, time);
+  }
+
+
+  template <int dim>
+  ExpressionAt<dim>::ExpressionAt(const ParsedExpression<dim> &expression,
+                                  const unsigned int           n_components,
+                                  const double                 time)
+    : Function<dim>(n_components, time)
+    , expression(expression)
+  {}
+
+
+  template <int dim>
+  double
+  ExpressionAt<dim>::value(const Point<dim> &point, const unsigned int component) const
+  {
+    return expression.value(point, this->get_time(), component);
+  }
+
+
+  template <int dim>
+  void
+  ExpressionAt<dim>::vector_value(const Point<dim> &point, Vector<double> &values) const
+  {
+    expression.vector_value(point, this->get_time(), values);
   }
 
 
@@ -216,6 +264,7 @@ namespace viscofilm
 
 
   VISCOFILM_INSTANTIATE(ParsedExpression)
+  VISCOFILM_INSTANTIATE(ExpressionAt)
 #define INSTANTIATE(dim)                                                     \
   template Point<dim> parse_point<dim>(const std::string &, const std::string &); \
   template std::vector<Point<dim>> parse_point_list<dim>(const std::string &,     \

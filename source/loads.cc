@@ -6,7 +6,6 @@
 
 #include <deal.II/lac/affine_constraints.h>
 
-#include <viscofilm/dof_cell.h>
 #include <viscofilm/boundary_conditions.h>
 #include <viscofilm/input.h>
 #include <viscofilm/loads.h>

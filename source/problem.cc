@@ -34,7 +34,7 @@ namespace viscofilm
 
 
   template <int dim>
-  Problem<dim>::Problem(Parameters<dim> &parameters, const ParameterHandler &prm, MPI_Comm comm)
+  Problem<dim>::Problem(const Parameters<dim> &parameters, const ParameterHandler &prm, MPI_Comm comm)
     : parameters(parameters)
     , prm(prm)
     , mpi_communicator(comm)
@@ -59,7 +59,8 @@ namespace viscofilm
              parameters.stress,
              parameters.model,
              parameters.boundary_conditions,
-             parameters.time_stepping.order)
+             parameters.time_stepping.order,
+             stokes.quadrature())
     , departure_feet(parameters.departure_feet, triangulation)
     , loads(parameters.detachment,
             parameters.model,
@@ -77,7 +78,12 @@ namespace viscofilm
                  stress)
     , output(parameters.output, triangulation)
     , checkpoint(parameters.checkpointing, parameters.output.directory, comm)
-  {}
+    // A checkpoint attaches the fields' vectors in this order.
+    , fields{&stokes, &stress, &volume_fraction}
+  {
+    if (VolumeFraction<dim> *detached = detachment.detached_fraction())
+      fields.push_back(detached);
+  }
 
 
   template <int dim>
@@ -128,10 +134,9 @@ namespace viscofilm
   Problem<dim>::setup_dofs()
   {
     TimerOutput::Scope t(*computing_timer, "setup");
-    stokes.setup_dofs();
-    volume_fraction.setup_dofs();
+    for (FieldBase<dim> *field : fields)
+      field->setup_dofs();
     detachment.setup_dofs();
-    stress.setup_dofs(stokes.quadrature());
     mesh_changed();
     pcout << "Mesh: " << triangulation.n_global_active_cells() << " cells, Δx = "
           << parameters.geometry.initial_cell_size() << "; "
@@ -156,15 +161,11 @@ namespace viscofilm
                                                input))
       return false;
     triangulation.prepare_coarsening_and_refinement();
-    stokes.prepare_for_refinement();
-    stress.prepare_for_refinement();
-    volume_fraction.prepare_for_refinement();
-    detachment.prepare_for_refinement();
+    for (FieldBase<dim> *field : fields)
+      field->prepare_for_refinement();
     triangulation.execute_coarsening_and_refinement();
-    stokes.finish_refinement();
-    stress.finish_refinement();
-    volume_fraction.finish_refinement();
-    detachment.finish_refinement();
+    for (FieldBase<dim> *field : fields)
+      field->finish_refinement();
     mesh_changed();
     return true;
   }
@@ -175,6 +176,7 @@ namespace viscofilm
   Problem<dim>::mesh_changed()
   {
     output.mesh_changed();
+    detachment.mesh_changed();
     // The edge of the smallest (square or cubic) cell: its diameter / √dim.
     min_cell_size = GridTools::minimal_cell_diameter(triangulation) / std::sqrt(double(dim));
   }
@@ -186,15 +188,11 @@ namespace viscofilm
   {
     TimerOutput::Scope t(*computing_timer, "checkpoint");
     const std::string mesh_file = checkpoint.begin();
-    stokes.prepare_for_checkpoint();
-    stress.prepare_for_checkpoint();
-    volume_fraction.prepare_for_checkpoint();
-    detachment.prepare_for_checkpoint();
+    for (FieldBase<dim> *field : fields)
+      field->prepare_for_checkpoint();
     triangulation.save(mesh_file);
-    stokes.checkpoint_written();
-    stress.checkpoint_written();
-    volume_fraction.checkpoint_written();
-    detachment.checkpoint_written();
+    for (FieldBase<dim> *field : fields)
+      field->checkpoint_written();
     checkpoint.commit({step,
                        time,
                        stokes.previous_time_step(),
@@ -217,11 +215,9 @@ namespace viscofilm
       triangulation.load(checkpoint.mesh_file());
     }
     setup_dofs();
-    stokes.finish_refinement();
+    for (FieldBase<dim> *field : fields)
+      field->finish_refinement();
     stokes.set_previous_time_step(state.previous_time_step);
-    stress.finish_refinement();
-    volume_fraction.finish_refinement();
-    detachment.finish_refinement();
     detachment.set_totals(state.detached);
     volume_fraction.set_boundary_exchange(state.volume_fraction);
     mesh_changed();
@@ -263,13 +259,12 @@ namespace viscofilm
         }
         softened = !(adaptive && refine_mesh(false));
       }
+    volume_fraction.advance_time(); // φ^0: the first step's φ^n
     if (adaptive)
       pcout << "Adapted mesh: " << triangulation.n_global_active_cells()
             << " cells, " << stokes.n_dofs() << " Stokes dofs, smallest Δx = "
             << min_cell_size << std::endl;
-    parameters.initial_conditions.stress.function().set_time(0);
-    stress.set_initial_conditions(parameters.initial_conditions.stress.function(),
-                                  volume_fraction);
+    stress.set_initial_conditions(parameters.initial_conditions.stress.at(0), volume_fraction);
     stokes.invalidate_matrix();
     // Order 2 with Res = 0: u^0 is the flow of the initial state and the
     // boundary data at t = 0 (the solver's u = 0 is none: the first step's
@@ -298,7 +293,7 @@ namespace viscofilm
       time_step,
       &volume_fraction.dof_handler(),
       &volume_fraction.solution(),
-      &parameters.verification.body_force.function(),
+      &parameters.verification.body_force,
       [this](const typename DoFHandler<dim>::active_cell_iterator &cell,
              const std::vector<double> &                phi,
              std::vector<SymmetricTensor<2, dim>> &       tau) {
@@ -445,9 +440,8 @@ namespace viscofilm
             if (!stepping.accept(time_step, report.error_estimate))
               {
                 // Rejected: every field back to t_n, and again shorter.
-                stokes.restore_old();
-                stress.restore_old();
-                volume_fraction.restore_old();
+                for (FieldBase<dim> *field : fields)
+                  field->restore_old();
                 stokes.invalidate_matrix();
                 continue;
               }
@@ -605,8 +599,8 @@ namespace viscofilm
             last_step = (time >= end_time * (1 - 1e-12));
             write_statistics(step, time, report);
             output_results(step, time, last_step);
-            stokes.advance_time();
-            stress.advance_time();
+            for (FieldBase<dim> *field : fields)
+              field->advance_time();
             if (parameters.mesh_refinement.adaptive && !last_step &&
                 step % parameters.mesh_refinement.interval == 0)
               refine_mesh();

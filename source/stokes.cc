@@ -255,16 +255,19 @@ namespace viscofilm
     const Model &                                  model,
     const BoundaryConditions<dim> &                boundary_conditions,
     const unsigned int                             order)
-    : triangulation(triangulation)
+    : FieldType(triangulation)
+    , triangulation(triangulation)
     , parameters(parameters)
     , model(model)
     , boundary_conditions(boundary_conditions)
     , mpi_communicator(triangulation.get_communicator())
     , fe(FE_Q<dim>(2), dim, *pressure_element<dim>(parameters.pressure_element), 1)
-    , dofs(triangulation)
     , order(order)
     , linear_solver(StokesLinearSolver<dim>::create(parameters, model))
-  {}
+  {
+    if (order == 2)
+      this->carry(older_solution);
+  }
 
 
   template <int dim>
@@ -287,17 +290,15 @@ namespace viscofilm
 
     const IndexSet &owned = dofs.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dofs, locally_relevant_dofs);
-    owned_partitioning    = {owned.get_view(0, n_u), owned.get_view(n_u, n_u + n_p)};
-    relevant_partitioning = {locally_relevant_dofs.get_view(0, n_u),
-                             locally_relevant_dofs.get_view(n_u, n_u + n_p)};
+    this->setup_vectors({owned.get_view(0, n_u), owned.get_view(n_u, n_u + n_p)},
+                        {locally_relevant_dofs.get_view(0, n_u),
+                         locally_relevant_dofs.get_view(n_u, n_u + n_p)});
 
     // The constrained dofs do not change in time, only their values do.
     make_constraints(0.0);
     linear_solver->reinit(dofs, constraints, owned_partitioning, relevant_partitioning);
 
     system_rhs.reinit(owned_partitioning, mpi_communicator);
-    current_solution.reinit(owned_partitioning, relevant_partitioning, mpi_communicator);
-    old_solution.reinit(owned_partitioning, relevant_partitioning, mpi_communicator);
     older_solution.reinit(owned_partitioning, relevant_partitioning, mpi_communicator);
     invalidate_matrix();
   }
@@ -405,53 +406,6 @@ namespace viscofilm
 
   template <int dim>
   void
-  StokesSolver<dim>::prepare_for_refinement()
-  {
-    carrier.prepare(dofs, current_solution);
-    if (order == 2)
-      previous_carrier.prepare(dofs, older_solution);
-  }
-
-
-  template <int dim>
-  void
-  StokesSolver<dim>::finish_refinement()
-  {
-    setup_dofs();
-    TrilinosWrappers::MPI::BlockVector distributed(owned_partitioning,
-                                                   mpi_communicator);
-    carrier.finish(dofs, distributed);
-    current_solution = distributed;
-    old_solution     = distributed;
-    if (order == 2)
-      {
-        previous_carrier.finish(dofs, distributed);
-        older_solution = distributed;
-      }
-  }
-
-
-  template <int dim>
-  void
-  StokesSolver<dim>::prepare_for_checkpoint()
-  {
-    carrier.prepare_checkpoint(dofs, current_solution);
-    if (order == 2)
-      previous_carrier.prepare_checkpoint(dofs, older_solution);
-  }
-
-
-  template <int dim>
-  void
-  StokesSolver<dim>::checkpoint_written()
-  {
-    carrier.release();
-    previous_carrier.release();
-  }
-
-
-  template <int dim>
-  void
   StokesSolver<dim>::advance_time()
   {
     if (order == 2)
@@ -459,15 +413,7 @@ namespace viscofilm
         older_solution = old_solution;
         previous_step  = step_length;
       }
-    old_solution = current_solution;
-  }
-
-
-  template <int dim>
-  const TrilinosWrappers::MPI::BlockVector &
-  StokesSolver<dim>::previous_solution() const
-  {
-    return older_solution;
+    FieldType::advance_time();
   }
 
 
@@ -492,30 +438,6 @@ namespace viscofilm
   StokesSolver<dim>::set_previous_time_step(const double time_step)
   {
     previous_step = time_step;
-  }
-
-
-  template <int dim>
-  void
-  StokesSolver<dim>::restore_old()
-  {
-    current_solution = old_solution;
-  }
-
-
-  template <int dim>
-  const DoFHandler<dim> &
-  StokesSolver<dim>::dof_handler() const
-  {
-    return dofs;
-  }
-
-
-  template <int dim>
-  const TrilinosWrappers::MPI::BlockVector &
-  StokesSolver<dim>::solution() const
-  {
-    return current_solution;
   }
 
 

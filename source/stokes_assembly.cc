@@ -81,8 +81,6 @@ namespace viscofilm
                                      face_quadrature,
                                      update_values | update_normal_vectors |
                                        update_quadrature_points | update_JxW_values);
-    for (const auto &boundary : boundary_conditions.boundaries)
-      boundary.pressure.function().set_time(coefficients.time);
 
     const unsigned int dofs_per_cell = fe.n_dofs_per_cell();
     const unsigned int n_q_points    = quadrature.size();
@@ -126,7 +124,7 @@ namespace viscofilm
       model.density / coefficients.time_step * (bdf2 ? 1 + omega : 1);
     const double older_coefficient =
       model.density / coefficients.time_step * omega * omega / (1 + omega);
-    coefficients.body_force->set_time(coefficients.time);
+    const ExpressionAt<dim> body_force_now = coefficients.body_force->at(coefficients.time);
 
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -170,8 +168,7 @@ namespace viscofilm
               }
           else
             fe_values[velocities].get_function_values(old_solution, old_velocity);
-          coefficients.body_force->vector_value_list(
-            fe_values.get_quadrature_points(), body_force);
+          body_force_now.vector_value_list(fe_values.get_quadrature_points(), body_force);
 
           // With the matrix current, the cell matrix is needed only to move
           // the inhomogeneities of constrained dofs to the right-hand side:
@@ -232,13 +229,13 @@ namespace viscofilm
                 boundary_conditions.boundary(face->boundary_id()).type ==
                   BoundaryConditions<dim>::Type::pressure)
               {
-                const Function<dim> &pressure =
-                  boundary_conditions.boundary(face->boundary_id()).pressure.function();
+                const ParsedExpression<dim> &pressure =
+                  boundary_conditions.boundary(face->boundary_id()).pressure;
                 fe_face_values.reinit(cell, face);
                 for (unsigned int q = 0; q < face_quadrature.size(); ++q)
                   {
                     const double traction =
-                      pressure.value(fe_face_values.quadrature_point(q)) *
+                      pressure.value(fe_face_values.quadrature_point(q), coefficients.time) *
                       fe_face_values.JxW(q);
                     for (unsigned int i = 0; i < dofs_per_cell; ++i)
                       cell_rhs(i) -= traction * (fe_face_values[velocities].value(i, q) *

@@ -185,8 +185,10 @@ namespace viscofilm
     const Parameters &                             parameters,
     const Model &                                  model,
     const BoundaryConditions<dim> &                boundary_conditions,
-    const unsigned int                             order)
-    : triangulation(triangulation)
+    const unsigned int                             order,
+    const Quadrature<dim> &                        stokes_quadrature)
+    : FieldType(triangulation)
+    , triangulation(triangulation)
     , parameters(parameters)
     , model(model)
     , boundary_conditions(boundary_conditions)
@@ -195,7 +197,7 @@ namespace viscofilm
            static_cast<const FiniteElement<dim> &>(FE_DGQ<dim>(2)) :
            static_cast<const FiniteElement<dim> &>(FE_Q<dim>(2)),
          n_symmetric_components<dim>)
-    , dofs(triangulation)
+    , stokes_quadrature(stokes_quadrature)
   {}
 
 
@@ -218,20 +220,17 @@ namespace viscofilm
 
   template <int dim>
   void
-  ElasticStress<dim>::setup_dofs(const Quadrature<dim> &quadrature)
+  ElasticStress<dim>::setup_dofs()
   {
-    const MPI_Comm comm = triangulation.get_communicator();
     dofs.distribute_dofs(fe);
     const IndexSet &owned = dofs.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dofs, locally_relevant_dofs);
-    current.reinit(owned, locally_relevant_dofs, comm);
-    old.reinit(owned, locally_relevant_dofs, comm);
-    hanging_node_constraints.clear();
-    hanging_node_constraints.reinit(locally_relevant_dofs);
-    DoFTools::make_hanging_node_constraints(dofs, hanging_node_constraints);
-    boundary_conditions.constrain_periodic(dofs, hanging_node_constraints);
-    hanging_node_constraints.close();
-    stokes_quadrature = quadrature;
+    this->setup_vectors(owned, locally_relevant_dofs);
+    constraints.clear();
+    constraints.reinit(locally_relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dofs, constraints);
+    boundary_conditions.constrain_periodic(dofs, constraints);
+    constraints.close();
 
     const std::vector<Point<dim>> &unit_support =
       fe.base_element(0).get_unit_support_points();
@@ -268,7 +267,7 @@ namespace viscofilm
             }
         }
 
-    quadrature_values = std::make_unique<FEValues<dim>>(fe, quadrature, update_values);
+    quadrature_values = std::make_unique<FEValues<dim>>(fe, stokes_quadrature, update_values);
     if (parameters.wall_shear)
       find_wall_normals();
   }
@@ -341,9 +340,9 @@ namespace viscofilm
         set_conformation(node, c, distributed);
       }
     distributed.compress(VectorOperation::insert);
-    hanging_node_constraints.distribute(distributed);
-    current          = distributed;
-    old              = distributed;
+    constraints.distribute(distributed);
+    current_solution = distributed;
+    old_solution     = distributed;
     transfer_repairs = 0; // of the unset c carried by the initial refinement
   }
 
@@ -394,7 +393,7 @@ namespace viscofilm
       [&](const typename Triangulation<dim>::active_cell_iterator &cell,
           const ArrayView<const Point<dim>> &             unit_points,
           const ArrayView<std::array<double, n_values>> & values) {
-        cell_of(dofs, cell)->get_dof_values(old, cell_values.begin(), cell_values.end());
+        cell_of(dofs, cell)->get_dof_values(old_solution, cell_values.begin(), cell_values.end());
         conformation.reinit(cell, unit_points);
         conformation.evaluate(cell_values, EvaluationFlags::values);
         for (unsigned int q = 0; q < unit_points.size(); ++q)
@@ -448,9 +447,7 @@ namespace viscofilm
             // The characteristic enters through boundary inflow[i]: its
             // Stress at the cut, at t_n like c^n at the other feet, and its
             // volume fraction there.
-            FunctionParser<dim> &stress = boundary_conditions.boundary(inflow[i]).stress.function();
-            stress.set_time(time);
-            stress.vector_value(at_feet[i], tau);
+            boundary_conditions.boundary(inflow[i]).stress.vector_value(at_feet[i], time, tau);
             nodes[i].foot_conformation = ElasticStress<dim>::conformation(
               tau, boundary_conditions.boundary(inflow[i]).volume_fraction);
           }
@@ -495,7 +492,7 @@ namespace viscofilm
     for (TrilinosWrappers::MPI::Vector &vector : gradient)
       {
         vector.compress(VectorOperation::insert);
-        hanging_node_constraints.distribute(vector);
+        constraints.distribute(vector);
         TrilinosWrappers::MPI::Vector ghosted(dofs.locally_owned_dofs(),
                                               locally_relevant_dofs,
                                               triangulation.get_communicator());
@@ -712,10 +709,10 @@ namespace viscofilm
     step_error = largest[0] > 0 ? largest[0] / (largest[1] + largest[2]) : 0;
     // A continuous c is continuous at hanging nodes too, except where the
     // repair below lifts a hanging node (by the repair's size, counted).
-    hanging_node_constraints.distribute(distributed);
+    constraints.distribute(distributed);
     constraint_repairs = repair_positivity(distributed);
-    const TrilinosWrappers::MPI::Vector previous = current;
-    current                                      = distributed;
+    const TrilinosWrappers::MPI::Vector previous = current_solution;
+    current_solution                             = distributed;
     return relative_change(previous, volume_fraction);
   }
 
@@ -759,7 +756,7 @@ namespace viscofilm
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
-          fe_values.get_function_values(current, now);
+          fe_values.get_function_values(current_solution, now);
           fe_values.get_function_values(previous, before);
           phi_values.reinit(cell_of(volume_fraction.dof_handler(), cell));
           phi_values.get_function_values(volume_fraction.solution(), phi);
@@ -814,7 +811,7 @@ namespace viscofilm
   {
     quadrature_values->reinit(cell_of(dofs, cell));
     std::vector<Vector<double>> c(tau.size(), Vector<double>(n_symmetric_components<dim>));
-    quadrature_values->get_function_values(current, c);
+    quadrature_values->get_function_values(current_solution, c);
     for (unsigned int q = 0; q < tau.size(); ++q)
       tau[q] = stress_of(c[q], volume_fraction[q]);
   }
@@ -847,39 +844,9 @@ namespace viscofilm
 
   template <int dim>
   void
-  ElasticStress<dim>::prepare_for_refinement()
+  ElasticStress<dim>::transferred(TrilinosWrappers::MPI::Vector &distributed)
   {
-    carrier.prepare(dofs, current);
-  }
-
-
-  template <int dim>
-  void
-  ElasticStress<dim>::finish_refinement()
-  {
-    setup_dofs(stokes_quadrature);
-    TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
-                                              triangulation.get_communicator());
-    carrier.finish(dofs, distributed);
     transfer_repairs += repair_positivity(distributed);
-    current = distributed;
-    old     = distributed;
-  }
-
-
-  template <int dim>
-  void
-  ElasticStress<dim>::prepare_for_checkpoint()
-  {
-    carrier.prepare_checkpoint(dofs, current);
-  }
-
-
-  template <int dim>
-  void
-  ElasticStress<dim>::checkpoint_written()
-  {
-    carrier.release();
   }
 
 
@@ -893,17 +860,9 @@ namespace viscofilm
 
   template <int dim>
   void
-  ElasticStress<dim>::restore_old()
-  {
-    current = old;
-  }
-
-
-  template <int dim>
-  void
   ElasticStress<dim>::advance_time()
   {
-    old              = current;
+    FieldType::advance_time();
     transfer_repairs = 0;
   }
 
@@ -914,7 +873,7 @@ namespace viscofilm
   {
     double smallest = std::numeric_limits<double>::max();
     for (const Node &node : nodes)
-      smallest = std::min(smallest, smallest_eigenvalue(conformation_at(node, current)));
+      smallest = std::min(smallest, smallest_eigenvalue(conformation_at(node, current_solution)));
     return Utilities::MPI::min(smallest, triangulation.get_communicator());
   }
 
@@ -948,23 +907,7 @@ namespace viscofilm
   ElasticStress<dim>::add_output(DataOut<dim> &data_out, const VolumeFraction<dim> &volume_fraction)
   {
     tau_postprocessor = std::make_unique<StressPostprocessor<dim>>(*this, volume_fraction);
-    data_out.add_data_vector(dofs, current, *tau_postprocessor);
-  }
-
-
-  template <int dim>
-  const DoFHandler<dim> &
-  ElasticStress<dim>::dof_handler() const
-  {
-    return dofs;
-  }
-
-
-  template <int dim>
-  const TrilinosWrappers::MPI::Vector &
-  ElasticStress<dim>::solution() const
-  {
-    return current;
+    data_out.add_data_vector(dofs, current_solution, *tau_postprocessor);
   }
 
 

@@ -80,8 +80,7 @@ namespace viscofilm
                           const bool          pressure_up_to_constant) const
   {
     Assert(exact_solution, ExcInternalError());
-    FunctionParser<dim> &exact = exact_solution->function();
-    exact.set_time(time);
+    const ExpressionAt<dim> exact = exact_solution->at(time);
 
     const DoFHandler<dim> &dof_handler = stokes.dof_handler();
     const QGauss<dim>      quadrature(dof_handler.get_fe().degree + 2);
@@ -125,11 +124,9 @@ namespace viscofilm
     double
     field_l2_error(const DoFHandler<dim> &                dof_handler,
                    const TrilinosWrappers::MPI::Vector &solution,
-                   FunctionParser<dim> &                  exact,
-                   const double                         time,
+                   const Function<dim> &                exact,
                    const std::vector<double> &          offset)
     {
-      exact.set_time(time);
       const unsigned int n = offset.size();
       const QGauss<dim>    quadrature(dof_handler.get_fe().degree + 2);
       FEValues<dim>        fe_values(dof_handler.get_fe(),
@@ -161,8 +158,7 @@ namespace viscofilm
                                 const VolumeFraction<dim> &volume_fraction,
                                 const double          time) const
   {
-    FunctionParser<dim> &exact = exact_stress->function();
-    exact.set_time(time);
+    const ExpressionAt<dim> exact = exact_stress->at(time);
     const DoFHandler<dim> &dof_handler = stress.dof_handler();
     const QGauss<dim>      quadrature(dof_handler.get_fe().degree + 2);
     FEValues<dim>          fe_values(dof_handler.get_fe(),
@@ -203,8 +199,7 @@ namespace viscofilm
   {
     return field_l2_error(volume_fraction.dof_handler(),
                           volume_fraction.solution(),
-                          exact_volume_fraction->function(),
-                          time,
+                          exact_volume_fraction->at(time),
                           {0.0});
   }
 

@@ -77,13 +77,13 @@ namespace viscofilm
     const BoundaryConditions<dim> &                boundary_conditions,
     const std::string &                            name,
     const bool                                     inflow_from_boundaries)
-    : parameters(parameters)
+    : FieldType(triangulation)
+    , parameters(parameters)
     , boundary_conditions(boundary_conditions)
     , mpi_communicator(triangulation.get_communicator())
     , name(name)
     , inflow_from_boundaries(inflow_from_boundaries)
     , fe(2)
-    , dofs(triangulation)
   {}
 
 
@@ -98,9 +98,7 @@ namespace viscofilm
     DoFTools::make_hanging_node_constraints(dofs, constraints);
     boundary_conditions.constrain_periodic(dofs, constraints);
     constraints.close();
-    current_solution.reinit(dofs.locally_owned_dofs(),
-                            locally_relevant_dofs,
-                            mpi_communicator);
+    this->setup_vectors(dofs.locally_owned_dofs(), locally_relevant_dofs);
     system_rhs.reinit(dofs.locally_owned_dofs(), mpi_communicator);
 
     // Inflow faces change with the flow: keep constrained dofs in the pattern
@@ -211,8 +209,6 @@ namespace viscofilm
                           const unsigned int  order,
                           const bool          estimate_error)
   {
-    old_solution        = current_solution;
-    old_exchange        = exchange;
     last_error_estimate = 0;
     // Second order (bounded): the feet by the midpoint rule, with u^{n+1/2}
     // ≈ (u^n + u^{n+1})/2 (local error O(k³)); first order: with u^{n+1},
@@ -268,8 +264,17 @@ namespace viscofilm
   void
   VolumeFraction<dim>::restore_old()
   {
-    current_solution = old_solution;
-    exchange         = old_exchange;
+    FieldType::restore_old();
+    exchange = old_exchange;
+  }
+
+
+  template <int dim>
+  void
+  VolumeFraction<dim>::advance_time()
+  {
+    FieldType::advance_time();
+    old_exchange = exchange;
   }
 
 
@@ -759,67 +764,28 @@ namespace viscofilm
         const auto [phi_min, phi_max] = range();
         before_transfer = std::array<double, 3>{{phi_min, phi_max, integral()}};
       }
-    carrier.prepare(dofs, current_solution);
+    FieldType::prepare_for_refinement();
   }
 
 
   template <int dim>
   void
-  VolumeFraction<dim>::finish_refinement()
+  VolumeFraction<dim>::transferred(TrilinosWrappers::MPI::Vector &distributed)
   {
-    setup_dofs();
-    TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
-                                              mpi_communicator);
-    carrier.finish(dofs, distributed);
+    if (!before_transfer)
+      return;
+    const auto [phi_min, phi_max, mass] = *before_transfer;
+    before_transfer.reset();
+    for (const auto i : dofs.locally_owned_dofs())
+      distributed[i] = std::clamp(static_cast<double>(distributed[i]), phi_min, phi_max);
+    constraints.distribute(distributed);
     current_solution = distributed;
-    if (before_transfer)
-      {
-        // Q2 interpolation onto children overshoots at fronts: clip to the
-        // range before, and restore the mass within it.
-        const auto [phi_min, phi_max, mass] = *before_transfer;
-        before_transfer.reset();
-        for (const auto i : dofs.locally_owned_dofs())
-          distributed[i] = std::clamp(static_cast<double>(distributed[i]), phi_min, phi_max);
-        constraints.distribute(distributed);
-        current_solution = distributed;
-        TrilinosWrappers::MPI::Vector lower(dofs.locally_owned_dofs(), mpi_communicator);
-        TrilinosWrappers::MPI::Vector upper(lower);
-        lower = phi_min;
-        upper = phi_max;
-        restore_mass(mass, lower, upper);
-      }
-  }
-
-
-  template <int dim>
-  void
-  VolumeFraction<dim>::prepare_for_checkpoint()
-  {
-    carrier.prepare_checkpoint(dofs, current_solution);
-  }
-
-
-  template <int dim>
-  void
-  VolumeFraction<dim>::checkpoint_written()
-  {
-    carrier.release();
-  }
-
-
-  template <int dim>
-  const DoFHandler<dim> &
-  VolumeFraction<dim>::dof_handler() const
-  {
-    return dofs;
-  }
-
-
-  template <int dim>
-  const TrilinosWrappers::MPI::Vector &
-  VolumeFraction<dim>::solution() const
-  {
-    return current_solution;
+    TrilinosWrappers::MPI::Vector lower(dofs.locally_owned_dofs(), mpi_communicator);
+    TrilinosWrappers::MPI::Vector upper(lower);
+    lower = phi_min;
+    upper = phi_max;
+    restore_mass(mass, lower, upper);
+    distributed = current_solution;
   }
 
 

@@ -108,10 +108,6 @@ namespace viscofilm
     std::vector<std::array<double, n>>
     evaluate(const CellEvaluation<dim, n> &evaluate_cell) const;
 
-    /// Points of the last reinit() that went to another rank, on this rank.
-    unsigned int
-    n_remote_points() const;
-
   private:
     struct LocalPoint
     {

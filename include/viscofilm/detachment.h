@@ -11,7 +11,6 @@
 
 #include <viscofilm/dimension.h>
 #include <viscofilm/loads.h>
-#include <viscofilm/mesh_refinement.h>
 #include <viscofilm/model.h>
 #include <viscofilm/volume_fraction.h>
 
@@ -78,10 +77,15 @@ namespace viscofilm
                VolumeFraction<dim> &                          volume_fraction,
                const ElasticStress<dim> &                     stress);
 
-    /// After VolumeFraction::setup_dofs(): φ_d (0) and the clocks of the
-    /// duration.
+    /// After VolumeFraction::setup_dofs(): the clocks of the duration (0).
+    /// φ_d is a field of its own (detached_fraction()); φ carries the clocks
+    /// through mesh changes and checkpoints.
     void
     setup_dofs();
+
+    /// After any change of the mesh: the connectivity is built anew.
+    void
+    mesh_changed();
 
     /// After the transport of an accepted step of length @p time_step: φ_d
     /// carried by the step's flow as φ was (@p feet, @p order), then φ := 0
@@ -106,25 +110,17 @@ namespace viscofilm
     void
     add_output(DataOut<dim> &data_out) const;
 
-    /// φ_d, for the refinement indicator; null with Release = false.
+    /// φ_d, for the refinement indicator and Problem's list of fields; null
+    /// with Release = false.
     const VolumeFraction<dim> *
     detached_fraction() const;
+    VolumeFraction<dim> *
+    detached_fraction();
 
     Totals
     totals() const;
     void
     set_totals(const Totals &totals);
-
-    /// Keep φ_d and the clocks across a mesh change and a checkpoint (as
-    /// VolumeFraction; no clocks with Duration = 0).
-    void
-    prepare_for_refinement();
-    void
-    finish_refinement();
-    void
-    prepare_for_checkpoint();
-    void
-    checkpoint_written();
 
   private:
     /// The criterion's load at each owned node of φ in the biofilm (mean
@@ -132,10 +128,6 @@ namespace viscofilm
     /// there); 0 where the criterion does not apply.
     TrilinosWrappers::MPI::Vector
     nodal_load() const;
-
-    /// The clocks on φ's dofs (Duration > 0).
-    void
-    setup_clock();
 
     /// Strength: φ := 0 in @p phi (owned values) at the owned nodes whose
     /// load has exceeded the strength for the duration, flagged in
@@ -193,7 +185,6 @@ namespace viscofilm
     /// Per node of φ: how long the load has exceeded the strength (ghosted;
     /// only with Duration > 0).
     TrilinosWrappers::MPI::Vector                  clock;
-    SolutionCarrier<dim, TrilinosWrappers::MPI::Vector> carrier;
 
     /// Built at the first release on a mesh (doc/detachment.md).
     std::optional<Connectivity> connectivity;

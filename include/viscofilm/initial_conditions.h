@@ -21,6 +21,10 @@ namespace viscofilm
   class InitialConditions
   {
   public:
+    InitialConditions() = default;
+    /// Not copied: the expression at t = 0 refers to this object's.
+    InitialConditions(const InitialConditions &) = delete;
+
     static void
     declare_parameters(ParameterHandler &prm);
     /// @p directory: the parameter file's (Image/File); @p domain: the
@@ -56,6 +60,11 @@ namespace viscofilm
 
     unsigned int softening_steps     = 0;
     double       softening_time_step = 0.03125;
+
+  private:
+    /// The expression at t = 0, what initial_volume_fraction() returns
+    /// without an image (it refers to volume_fraction).
+    const ExpressionAt<dim> volume_fraction_at_start{volume_fraction, 1, 0};
   };
 } // namespace viscofilm
 

@@ -8,6 +8,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
+#include <deal.II/lac/vector.h>
+
 #include <viscofilm/dimension.h>
 
 #include <memory>
@@ -55,6 +57,9 @@ namespace viscofilm
    * parameter's name before the run starts, not in the middle of it.
    */
   template <int dim>
+  class ExpressionAt;
+
+  template <int dim>
   class ParsedExpression
   {
   public:
@@ -74,9 +79,20 @@ namespace viscofilm
           const std::string &constants,
           const std::string &parameter);
 
-    /// The function; set_time() on it before evaluating time-dependent input.
-    FunctionParser<dim> &
-    function() const;
+    /// Component @p component at (@p point, @p time).
+    double
+    value(const Point<dim> &point, const double time, const unsigned int component = 0) const;
+
+    /// Every component at (@p point, @p time).
+    void
+    vector_value(const Point<dim> &point, const double time, Vector<double> &values) const;
+
+    /// The expression at @p time as a deal.II Function, for the library's
+    /// interpolation and boundary-value calls (it refers to this
+    /// expression). Time is an argument of every evaluation: no caller sets
+    /// it on a shared object.
+    ExpressionAt<dim>
+    at(const double time) const;
 
     const std::string &
     text() const;
@@ -84,7 +100,28 @@ namespace viscofilm
   private:
     const unsigned int                 n_components;
     std::string                        expression;
+    /// Its time is the evaluation's, set by value() and vector_value().
     std::unique_ptr<FunctionParser<dim>> parser;
+  };
+
+
+  /// A ParsedExpression at a fixed time: a deal.II Function.
+  template <int dim>
+  class ExpressionAt : public Function<dim>
+  {
+  public:
+    ExpressionAt(const ParsedExpression<dim> &expression,
+                 const unsigned int           n_components,
+                 const double                 time);
+
+    double
+    value(const Point<dim> &point, const unsigned int component = 0) const override;
+
+    void
+    vector_value(const Point<dim> &point, Vector<double> &values) const override;
+
+  private:
+    const ParsedExpression<dim> &expression;
   };
 
   /// "0; 0; …": the zero expression with @p n_components components, the

@@ -129,6 +129,7 @@ namespace viscofilm
       hanging.distribute(distributed);
     }
 
+  private:
     std::unique_ptr<parallel::distributed::SolutionTransfer<dim, VectorType>> transfer;
   };
 } // namespace viscofilm

@@ -21,6 +21,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace viscofilm
 {
@@ -31,7 +32,7 @@ namespace viscofilm
   {
   public:
     /// @p prm is kept to write the parameters used next to the results.
-    Problem(Parameters<dim> &parameters, const ParameterHandler &prm, MPI_Comm comm);
+    Problem(const Parameters<dim> &parameters, const ParameterHandler &prm, MPI_Comm comm);
 
     /// Run all time steps; throws with the step and time on failure.
     void
@@ -106,7 +107,7 @@ namespace viscofilm
     void
     write_statistics(const unsigned int step, const double time, const StepReport &report);
 
-    Parameters<dim> &       parameters;
+    const Parameters<dim> &parameters;
     double                  time_step     = 0; // of the current step
     double                  step_cfl      = 0; // its max|u^n| k / Δx
     double                  min_cell_size = 0; // smallest cell edge
@@ -127,6 +128,8 @@ namespace viscofilm
     Detachment<dim>                         detachment;
     Output<dim>                             output;
     Checkpoint<dim>                         checkpoint;
+    /// Every field, for the life cycle (FieldBase): u and p, c, φ, φ_d.
+    std::vector<FieldBase<dim> *>           fields;
   };
 } // namespace viscofilm
 

@@ -21,7 +21,7 @@
 
 #include <viscofilm/boundary_conditions.h>
 #include <viscofilm/departure_feet.h>
-#include <viscofilm/mesh_refinement.h>
+#include <viscofilm/field.h>
 #include <viscofilm/model.h>
 
 #include <functional>
@@ -40,7 +40,7 @@ namespace viscofilm
   /// (stokes_assembly.cc), a linear-solver strategy per Method
   /// (stokes_linear_solver.h) and diagnostics (stokes_diagnostics.cc).
   template <int dim>
-  class StokesSolver
+  class StokesSolver : public Field<dim, TrilinosWrappers::MPI::BlockVector>
   {
   public:
     enum class Method
@@ -136,7 +136,7 @@ namespace viscofilm
       double                          time_step;
       const DoFHandler<dim> *           volume_fraction_dof_handler;
       const TrilinosWrappers::MPI::Vector *volume_fraction;
-      Function<dim> *                   body_force; // set_time() is called
+      const ParsedExpression<dim> *     body_force; // at time
       ElasticStress                        elastic_stress;
     };
 
@@ -151,7 +151,7 @@ namespace viscofilm
 
     /// Distribute dofs, build sparsity patterns, zero the solution.
     void
-    setup_dofs();
+    setup_dofs() override;
 
     /// The viscosity or time step changed: the matrix and the preconditioner
     /// are rebuilt at the next assemble()/solve().
@@ -185,36 +185,10 @@ namespace viscofilm
     unsigned int
     solve();
 
-    /// Keep the solution across a mesh change (between u^n := u^{n+1} and
-    /// the next step): prepare before the triangulation changes, finish
-    /// after; finish sets up the dofs anew.
+    /// u^n := current solution (Order = 2: u^{n-1} := u^n before), before
+    /// the next time step.
     void
-    prepare_for_refinement();
-    void
-    finish_refinement();
-    /// Keep the fields through a checkpoint: prepare before the mesh is
-    /// saved, written after; finish_refinement() after it is loaded.
-    void
-    prepare_for_checkpoint();
-    void
-    checkpoint_written();
-
-
-    /// u^n := current solution, before the next time step.
-    void
-    advance_time();
-
-    const DoFHandler<dim> &
-    dof_handler() const;
-
-    /// The current solution (u, v, p) with ghost values.
-    const TrilinosWrappers::MPI::BlockVector &
-    solution() const;
-
-    /// u^{n-1} with ghost values (Order = 2; kept through mesh changes and
-    /// checkpoints like u^n); valid while previous_time_step() > 0.
-    const TrilinosWrappers::MPI::BlockVector &
-    previous_solution() const;
+    advance_time() override;
 
     /// k_{n-1} = t_n − t_{n-1}, or 0 when there is no u^{n-1}.
     double
@@ -258,11 +232,6 @@ namespace viscofilm
     const TrilinosWrappers::MPI::BlockVector &
     start_of_step_solution() const;
 
-    /// The solution := (u^n, p^n), the state at the start of the step: a
-    /// rejected step.
-    void
-    restore_old();
-
     /// How often the velocity AMG was built so far (Preconditioner/Reuse).
     unsigned int
     n_preconditioner_builds() const;
@@ -281,6 +250,15 @@ namespace viscofilm
                       std::vector<double> &      viscosity);
 
   private:
+    using FieldType = Field<dim, TrilinosWrappers::MPI::BlockVector>;
+    using FieldType::constraints;
+    using FieldType::current_solution;
+    using FieldType::dofs;
+    using FieldType::locally_relevant_dofs;
+    using FieldType::old_solution;
+    using FieldType::owned_partitioning;
+    using FieldType::relevant_partitioning;
+
     void
     make_constraints(const double time);
     /// Shift the pressure to mean zero unless an outflow boundary fixes it.
@@ -294,16 +272,8 @@ namespace viscofilm
     const MPI_Comm                                 mpi_communicator;
 
     const FESystem<dim> fe;
-    DoFHandler<dim>     dofs;
-
-    std::vector<IndexSet>     owned_partitioning;
-    std::vector<IndexSet>     relevant_partitioning;
-    IndexSet                  locally_relevant_dofs;
-    AffineConstraints<double> constraints;
 
     TrilinosWrappers::MPI::BlockVector system_rhs;
-    TrilinosWrappers::MPI::BlockVector current_solution; // ghosted
-    TrilinosWrappers::MPI::BlockVector old_solution;     // ghosted, u^n
     TrilinosWrappers::MPI::BlockVector older_solution;   // ghosted, u^{n-1} (Order = 2)
     const unsigned int                 order;
     double                             step_length   = 0; // k_n, from trace_back()
@@ -313,9 +283,6 @@ namespace viscofilm
     std::vector<double> elastic_viscosity_cache;
     std::vector<Tensor<1, dim>>          old_velocity_at_feet; // per owned cell and q
     std::vector<Tensor<1, dim>>        previous_velocity_at_feet; // u^{n-1}, BDF2
-
-    SolutionCarrier<dim, TrilinosWrappers::MPI::BlockVector> carrier;
-    SolutionCarrier<dim, TrilinosWrappers::MPI::BlockVector> previous_carrier; // Order = 2
 
     bool matrix_is_current = false;
 

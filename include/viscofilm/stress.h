@@ -24,7 +24,7 @@
 #include <viscofilm/boundary_conditions.h>
 #include <viscofilm/departure_feet.h>
 #include <viscofilm/dimension.h>
-#include <viscofilm/mesh_refinement.h>
+#include <viscofilm/field.h>
 #include <viscofilm/model.h>
 
 #include <array>
@@ -41,7 +41,7 @@ namespace viscofilm
   class VolumeFraction;
 
   template <int dim>
-  class ElasticStress
+  class ElasticStress : public Field<dim, TrilinosWrappers::MPI::Vector>
   {
   public:
     struct Parameters
@@ -70,17 +70,18 @@ namespace viscofilm
     };
 
     /// @p order: Time stepping/Order (1: the thesis' update, eq. 3.44; 2:
-    /// the Strang-split update of update()).
+    /// the Strang-split update of update()). @p stokes_quadrature: the one
+    /// the Stokes assembly asks τ at.
     ElasticStress(const parallel::distributed::Triangulation<dim> &triangulation,
                   const Parameters &                             parameters,
                   const Model &                                  model,
                   const BoundaryConditions<dim> &boundary_conditions,
-                  const unsigned int        order);
+                  const unsigned int        order,
+                  const Quadrature<dim> &   stokes_quadrature);
 
-    /// Distribute dofs and list the stress nodes; @p quadrature is the one
-    /// the Stokes assembly asks τ at.
+    /// Distribute dofs and list the stress nodes.
     void
-    setup_dofs(const Quadrature<dim> &quadrature);
+    setup_dofs() override;
 
     /// c = Model::conformation(τ0, φ) at the nodes (τ0 = 0 in the thesis;
     /// always 0 without Model/Viscoelastic).
@@ -123,9 +124,6 @@ namespace viscofilm
     double
     error_estimate() const;
 
-    /// Reject the step: c := c^n.
-    void
-    restore_old();
 
     /// τ at the quadrature points of @p cell (the Stokes right-hand side),
     /// given φ there; the flow sees Model::stress_coupling(φ) τ.
@@ -143,22 +141,10 @@ namespace viscofilm
     bool
     stress_depends_on_volume_fraction() const;
 
-    /// Keep c across a mesh change (see StokesSolver).
+    /// c^n := c^{n+1}, before the next time step; the repairs of mesh
+    /// changes are counted from here.
     void
-    prepare_for_refinement();
-    void
-    finish_refinement();
-    /// Keep the fields through a checkpoint: prepare before the mesh is
-    /// saved, written after; finish_refinement() after it is loaded.
-    void
-    prepare_for_checkpoint();
-    void
-    checkpoint_written();
-
-
-    /// c^n := c^{n+1}, before the next time step.
-    void
-    advance_time();
+    advance_time() override;
 
     /// Smallest eigenvalue of c over all nodes (positive definiteness).
     double
@@ -187,14 +173,18 @@ namespace viscofilm
     void
     add_output(DataOut<dim> &data_out, const VolumeFraction<dim> &volume_fraction);
 
-    const DoFHandler<dim> &
-    dof_handler() const;
-
-    /// c with ghost values.
-    const TrilinosWrappers::MPI::Vector &
-    solution() const;
-
   private:
+    using FieldType = Field<dim, TrilinosWrappers::MPI::Vector>;
+    using FieldType::constraints; // hanging nodes, periodicity: continuous c
+    using FieldType::current_solution;
+    using FieldType::dofs;
+    using FieldType::locally_relevant_dofs;
+    using FieldType::old_solution;
+
+    /// Carried c on the new mesh: its positivity repaired.
+    void
+    transferred(TrilinosWrappers::MPI::Vector &distributed) override;
+
     struct Node
     {
       Point<dim>                                position;
@@ -261,17 +251,10 @@ namespace viscofilm
     const unsigned int        order;
 
     const FESystem<dim>             fe;
-    DoFHandler<dim>                 dofs;
-    IndexSet                      locally_relevant_dofs;
-    AffineConstraints<double>     hanging_node_constraints; // continuous c
-    Quadrature<dim>                 stokes_quadrature;
-    SolutionCarrier<dim, TrilinosWrappers::MPI::Vector> carrier;
+    const Quadrature<dim>           stokes_quadrature;
     std::vector<Node>             nodes;
     std::vector<unsigned int>     node_of_owned_dof; // component-0 dofs only
     std::array<unsigned int, Utilities::pow(3, dim)> lexicographic_node; // [ix + 3 iy (+ 9 iz)]
-
-    TrilinosWrappers::MPI::Vector current; // ghosted c^{n+1}
-    TrilinosWrappers::MPI::Vector old;     // ghosted c^n
 
     std::unique_ptr<FEValues<dim>>               quadrature_values;
     std::unique_ptr<DataPostprocessor<dim>>      tau_postprocessor;

@@ -19,7 +19,7 @@
 
 #include <viscofilm/boundary_conditions.h>
 #include <viscofilm/dimension.h>
-#include <viscofilm/mesh_refinement.h>
+#include <viscofilm/field.h>
 
 #include <array>
 #include <map>
@@ -36,7 +36,7 @@ namespace viscofilm
   class DepartureFeet;
 
   template <int dim>
-  class VolumeFraction
+  class VolumeFraction : public Field<dim, TrilinosWrappers::MPI::Vector>
   {
   public:
     /// The transport scheme and the GLS stabilisation of the thesis' one
@@ -79,7 +79,7 @@ namespace viscofilm
                    const bool         inflow_from_boundaries = true);
 
     void
-    setup_dofs();
+    setup_dofs() override;
 
     /// φ := the interpolant of @p initial at the Q2 nodes.
     void
@@ -114,37 +114,26 @@ namespace viscofilm
     double
     error_estimate() const;
 
-    /// φ := φ^n, the state before the last advance(): a rejected step.
+    /// φ := φ^n and the boundary's totals with it: a rejected step, or the
+    /// next iterate of Order 2's Picard loop.
     void
-    restore_old();
+    restore_old() override;
+
+    /// φ^n := φ and the boundary's totals with it.
+    void
+    advance_time() override;
 
     /// Eq. 2.50: @p n_steps implicit Euler steps of ∂φ/∂t = ∇·(D φ ∇φ).
     void
     soften(const double diffusion, const unsigned int n_steps, const double time_step);
 
-    const DoFHandler<dim> &
-    dof_handler() const;
-
     /// Add the field (named as constructed) to @p data_out.
     void
     add_output(DataOut<dim> &data_out) const;
 
-    /// φ with ghost values.
-    const TrilinosWrappers::MPI::Vector &
-    solution() const;
-
-    /// Keep φ across a mesh change (see StokesSolver).
+    /// Bounded: φ's range and mass before a mesh change, restored after it.
     void
-    prepare_for_refinement();
-    void
-    finish_refinement();
-    /// Keep the fields through a checkpoint: prepare before the mesh is
-    /// saved, written after; finish_refinement() after it is loaded.
-    void
-    prepare_for_checkpoint();
-    void
-    checkpoint_written();
-
+    prepare_for_refinement() override;
 
     /// ∫_Ω φ dx.
     double
@@ -165,6 +154,18 @@ namespace viscofilm
     range() const;
 
   private:
+    using FieldType = Field<dim, TrilinosWrappers::MPI::Vector>;
+    using FieldType::constraints;
+    using FieldType::current_solution;
+    using FieldType::dofs;
+    using FieldType::locally_relevant_dofs;
+    using FieldType::old_solution;
+
+    /// Q2 interpolation onto children overshoots at fronts: clip to the
+    /// range before the mesh change, and restore the mass within it.
+    void
+    transferred(TrilinosWrappers::MPI::Vector &distributed) override;
+
     /// The thesis' step, implicit; without @p stokes: pure φ-scaled diffusion.
     unsigned int
     gls_step(const StokesSolver<dim> *stokes, const double diffusion, const double time_step);
@@ -237,20 +238,14 @@ namespace viscofilm
     const std::string         name;
     const bool                inflow_from_boundaries;
     const FE_Q<dim>             fe;
-    DoFHandler<dim>             dofs;
-    AffineConstraints<double> constraints;
-    IndexSet                  locally_relevant_dofs;
 
     /// Range and mass before a mesh change (bounded scheme), restored after.
     std::optional<std::array<double, 3>> before_transfer;
 
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;
-    TrilinosWrappers::MPI::Vector current_solution; // ghosted
-    TrilinosWrappers::MPI::Vector old_solution;     // φ^n, for restore_old()
     double                        last_error_estimate = 0;
     Exchange exchange, old_exchange; // since t = 0; at t_n, for restore_old()
-    SolutionCarrier<dim, TrilinosWrappers::MPI::Vector> carrier;
   };
 } // namespace viscofilm
 
