@@ -149,6 +149,29 @@ namespace viscofilm
                       "cylinder must keep a gap of a tenth of the distance "
                       "from its centre to the nearest channel side (in x and "
                       "y).");
+    prm.declare_entry("Cylinder refinement",
+                      "0",
+                      Patterns::Integer(0, 8),
+                      "Refinements beyond Initial global refinement near the "
+                      "cylinder and along its wake (channel with cylinder): "
+                      "the n-th refines the cells with a vertex within "
+                      "Cylinder refinement distance / 2^(n-1) of the cylinder "
+                      "or of the wake's centreline, a mesh graded towards "
+                      "them. 0: the uniform mesh.");
+    prm.declare_entry("Cylinder refinement distance",
+                      "1",
+                      Patterns::Double(0),
+                      "Width of the band (from the cylinder's surface and the "
+                      "wake's centreline) that the first Cylinder refinement "
+                      "refines, in units of length; each further one halves "
+                      "it. > 0.");
+    prm.declare_entry("Wake refinement length",
+                      "0",
+                      Patterns::Double(0),
+                      "Length of the wake's centreline that Cylinder "
+                      "refinement also refines around: from the cylinder's "
+                      "rear along +x (the line y = the centre's y; 3D: the "
+                      "plane through the axis). 0: the cylinder only.");
     prm.declare_entry("Mesh file",
                       "",
                       Patterns::Anything(),
@@ -179,7 +202,16 @@ namespace viscofilm
       parse_point<dim>(prm.get("Cylinder centre"), "Geometry/Cylinder centre");
     cylinder_radius = prm.get_double("Cylinder radius");
     mesh_file       = prm.get("Mesh file");
+    cylinder_refinement          = prm.get_integer("Cylinder refinement");
+    cylinder_refinement_distance = prm.get_double("Cylinder refinement distance");
+    wake_refinement_length       = prm.get_double("Wake refinement length");
     prm.leave_subsection();
+    check_input(cylinder_refinement_distance > 0,
+                "Geometry/Cylinder refinement distance must be > 0, got " +
+                  to_text(cylinder_refinement_distance));
+    check_input(cylinder_refinement == 0 || mesh == Mesh::channel_with_cylinder,
+                "Geometry/Cylinder refinement = " + to_text(cylinder_refinement) +
+                  " needs Geometry/Mesh = channel with cylinder");
 
     if (mesh != Mesh::gmsh)
       {
@@ -391,6 +423,37 @@ namespace viscofilm
                                   "Mesh.Recombine3DAll = 1, or a transfinite "
                                   "structured mesh)"));
         triangulation.copy_triangulation(serial);
+      }
+  }
+
+
+  template <int dim>
+  void
+  Geometry<dim>::refine_initial_mesh(Triangulation<dim> &triangulation) const
+  {
+    triangulation.refine_global(initial_refinement);
+    // Distance in the plane across the axis from the cylinder's surface and
+    // from the wake's centreline segment behind it.
+    const double wake_end = cylinder_centre[0] + cylinder_radius + wake_refinement_length;
+    const auto   distance = [&](const Point<dim> &p) {
+      const double dx = p[0] - cylinder_centre[0], dy = p[1] - cylinder_centre[1];
+      double       d  = std::max(0.0, std::hypot(dx, dy) - cylinder_radius);
+      if (wake_refinement_length > 0 && dx >= 0)
+        d = std::min(d, std::hypot(std::max(0.0, p[0] - wake_end), dy));
+      return d;
+    };
+    for (unsigned int n = 0; n < cylinder_refinement; ++n)
+      {
+        const double band = cylinder_refinement_distance / std::pow(2.0, n);
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (const unsigned int v : cell->vertex_indices())
+              if (distance(cell->vertex(v)) < band)
+                {
+                  cell->set_refine_flag();
+                  break;
+                }
+        triangulation.execute_coarsening_and_refinement();
       }
   }
 

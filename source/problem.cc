@@ -92,7 +92,7 @@ namespace viscofilm
   {
     TimerOutput::Scope t(*computing_timer, "setup");
     make_coarse_grid();
-    triangulation.refine_global(parameters.geometry.initial_refinement);
+    parameters.geometry.refine_initial_mesh(triangulation);
     check_probe_points();
   }
 

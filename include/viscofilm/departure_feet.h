@@ -20,6 +20,7 @@
 #include <array>
 #include <functional>
 #include <optional>
+#include <memory>
 #include <vector>
 
 namespace viscofilm
@@ -121,7 +122,7 @@ namespace viscofilm
     std::vector<LocalPoint>                        local; // sorted by cell
     std::vector<unsigned int>                      remote_points;
     bool                                           any_remote = false; // on any rank
-    Utilities::MPI::RemotePointEvaluation<dim>       remote;
+    std::unique_ptr<Utilities::MPI::RemotePointEvaluation<dim>> remote;
     unsigned int                                   n_points = 0;
     std::vector<Point<dim>>                        located;
   };

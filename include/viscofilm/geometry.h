@@ -71,6 +71,11 @@ namespace viscofilm
     void
     make_coarse_grid(Triangulation<dim> &triangulation) const;
 
+    /// The initial mesh from the coarse one: Initial global refinement,
+    /// then Cylinder refinement's bands around the cylinder and its wake.
+    void
+    refine_initial_mesh(Triangulation<dim> &triangulation) const;
+
     /// The boundaries of the mesh, ordered by id.
     const std::vector<NamedBoundary> &
     boundaries() const;
@@ -96,6 +101,11 @@ namespace viscofilm
     double       cylinder_radius    = 1;
     std::string  mesh_file;          // as resolved against the .prm's directory
     unsigned int initial_refinement = 5;
+    /// Graded refinement towards the cylinder and its wake (doc/numerics.md,
+    /// "Meshes graded towards the cylinder").
+    unsigned int cylinder_refinement          = 0;
+    double       cylinder_refinement_distance = 1;
+    double       wake_refinement_length       = 0;
 
   private:
     /// Coarse cells per direction of the channel, so that they are squares.
