@@ -244,6 +244,7 @@ namespace viscofilm
 
     nodes.clear();
     node_of_owned_dof.assign(owned.n_elements(), numbers::invalid_unsigned_int);
+    const Mapping<dim> &                 mapping = Geometry<dim>::mapping(triangulation);
     std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -258,8 +259,7 @@ namespace viscofilm
                 continue;
               node_of_owned_dof[owned.index_within_set(dof)] = nodes.size();
               Node node;
-              node.position = Geometry<dim>::mapping(triangulation).transform_unit_to_real_cell(
-                cell, unit_support[k]);
+              node.position = mapping.transform_unit_to_real_cell(cell, unit_support[k]);
               node.cell = cell;
               for (unsigned int c = 0; c < n_symmetric_components<dim>; ++c)
                 node.dofs[c] = cell_dofs[fe.component_to_system_index(c, k)];

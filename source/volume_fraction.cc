@@ -440,6 +440,7 @@ namespace viscofilm
     std::vector<Point<dim>>                               nodes;
     std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
     std::vector<types::global_dof_index>                node_dofs, local_dofs(fe.n_dofs_per_cell());
+    const Mapping<dim> &mapping = Geometry<dim>::mapping(dofs.get_triangulation());
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -450,8 +451,7 @@ namespace viscofilm
                 !seen[owned.index_within_set(local_dofs[i])])
               {
                 seen[owned.index_within_set(local_dofs[i])] = true;
-                nodes.push_back(
-                  Geometry<dim>::mapping(dofs.get_triangulation()).transform_unit_to_real_cell(cell, unit_support[i]));
+                nodes.push_back(mapping.transform_unit_to_real_cell(cell, unit_support[i]));
                 cells.push_back(cell);
                 node_dofs.push_back(local_dofs[i]);
               }
