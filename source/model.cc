@@ -356,12 +356,11 @@ namespace viscofilm
       return 1.0;
     if (mixture == Mixture::modulus)
       return mix(modulus(water), modulus(biofilm), volume_fraction);
-    const double polymer =
-      mix(water.polymer_viscosity, biofilm.polymer_viscosity, volume_fraction);
-    return polymer == 0 ?
-             0.0 :
-             polymer / (slip_parameter *
-                        mix(water.relaxation_time, biofilm.relaxation_time, volume_fraction));
+    // Mixture = viscosity: the modulus of the phase with ηp and λ mixed.
+    return modulus(
+      Phase{0,
+            mix(water.polymer_viscosity, biofilm.polymer_viscosity, volume_fraction),
+            mix(water.relaxation_time, biofilm.relaxation_time, volume_fraction)});
   }
 
 
