@@ -17,6 +17,7 @@ namespace viscofilm
       {"Density", ""},
       {"Viscosity ratio", "500"},
       {"Weissenberg number", "2"},
+      {"Mixture", "viscosity"},
       {"Water/Solvent viscosity", "1"},
       {"Water/Polymer viscosity", "0"},
       {"Water/Relaxation time", "0"},
@@ -80,7 +81,18 @@ namespace viscofilm
                       "Biofilm/Relaxation time (SI). phases: water and biofilm "
                       "are each an Oldroyd-B/JS fluid (Water, Biofilm "
                       "subsections: ηs, ηp, λ), their properties mixed linearly "
-                      "in φ, τ acting unscaled on the flow.");
+                      "in φ (Mixture), τ acting unscaled on the flow.");
+    prm.declare_entry("Mixture",
+                      "viscosity",
+                      Patterns::Selection("viscosity|modulus"),
+                      "Rheology = phases: how the phases' elasticity is mixed "
+                      "in φ. viscosity: ηp and λ each linear in φ, so the "
+                      "modulus ηp/λ is the biofilm's at every φ > 0 beside a "
+                      "Newtonian water. modulus: the modulus G = ηp/λ and λ "
+                      "each linear in φ, ηp(φ) = G(φ) λ(φ): beside a Newtonian "
+                      "water G vanishes with φ, as the thesis mixture's "
+                      "φ-scaled stress does (doc/numerics.md, \"Rheology and "
+                      "units\"). ηs is linear in φ in both.");
     prm.declare_entry("Reynolds number",
                       "1.6667e-6",
                       Patterns::Double(0),
@@ -169,6 +181,8 @@ namespace viscofilm
     units    = prm.get("Units") == "SI" ? Units::SI : Units::dimensionless;
     rheology = prm.get("Rheology") == "phases" ? Rheology::phases :
                                                  Rheology::thesis_mixture;
+    mixture =
+      prm.get("Mixture") == "modulus" ? Mixture::modulus : Mixture::viscosity;
     slip_parameter = prm.get_double("Slip parameter");
     diffusion      = prm.get_double("Diffusion coefficient");
     viscoelastic   = prm.get_bool("Viscoelastic");
@@ -195,6 +209,7 @@ namespace viscofilm
       }
     if (phases)
       {
+        used.push_back("Mixture");
         for (const char *name : phase_names)
           {
             const std::string phase = name;
@@ -326,16 +341,26 @@ namespace viscofilm
 
 
   double
+  Model::modulus(const Phase &phase) const
+  {
+    return phase.polymer_viscosity == 0 ?
+             0.0 :
+             phase.polymer_viscosity / (slip_parameter * phase.relaxation_time);
+  }
+
+
+  double
   Model::stress_modulus(const double volume_fraction) const
   {
     if (rheology == Rheology::thesis_mixture)
       return 1.0;
-    const double polymer =
-      mix(water.polymer_viscosity, biofilm.polymer_viscosity, volume_fraction);
-    return polymer == 0 ?
-             0.0 :
-             polymer / (slip_parameter *
-                        mix(water.relaxation_time, biofilm.relaxation_time, volume_fraction));
+    if (mixture == Mixture::modulus)
+      return mix(modulus(water), modulus(biofilm), volume_fraction);
+    // Mixture = viscosity: the modulus of the phase with ηp and λ mixed.
+    return modulus(
+      Phase{0,
+            mix(water.polymer_viscosity, biofilm.polymer_viscosity, volume_fraction),
+            mix(water.relaxation_time, biofilm.relaxation_time, volume_fraction)});
   }
 
 
@@ -419,7 +444,11 @@ namespace viscofilm
       {
         out << "  derived (U = Velocity scale = " << U << ", L = Length scale = " << L
             << ", used only here): Re = ρUL/ηs(water) = "
-            << density * U * L / water.solvent_viscosity << std::endl;
+            << density * U * L / water.solvent_viscosity << std::endl
+            << "  mixed in φ (Mixture = "
+            << (mixture == Mixture::modulus ? "modulus): ηs, G = ηp/(aλ) and λ" :
+                                              "viscosity): ηs, ηp and λ")
+            << " linear" << std::endl;
         for (const char *name : phase_names)
           {
             const Phase &p     = (std::string(name) == "Water" ? water : biofilm);

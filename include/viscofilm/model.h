@@ -36,6 +36,14 @@ namespace viscofilm
       thesis_mixture,
       phases
     };
+    /// How `phases` mixes the two phases' elasticity in φ: ηp and λ linear
+    /// (G = ηp/λ the biofilm's at any φ > 0 next to a Newtonian water), or
+    /// G and λ linear (G → 0 with φ there).
+    enum class Mixture
+    {
+      viscosity,
+      modulus
+    };
 
     /// One phase (water or biofilm): solvent viscosity ηs, polymer
     /// viscosity ηp (0: Newtonian) and relaxation time λ, in the input's
@@ -76,14 +84,16 @@ namespace viscofilm
     double
     relaxed_conformation() const;
 
-    /// τ = G(φ) (c − c_rest I) (thesis eq. 2.39 with G = 1; phases: G =
-    /// ηp(φ)/(a λ(φ)), 0 in a Newtonian phase).
+    /// τ = G(φ) (c − c_rest I) (thesis eq. 2.39 with G = 1; phases: G(φ) of
+    /// stress_modulus(), 0 in a Newtonian phase).
     template <int dim>
     SymmetricTensor<2, dim>
     stress(const SymmetricTensor<2, dim> &conformation,
            const double                   volume_fraction) const;
 
-    /// G(φ) in τ = G (c − c_rest I).
+    /// G(φ) in τ = G (c − c_rest I). Phases: ηp(φ)/(a λ(φ)) with ηp and λ
+    /// linear in φ (Mixture = viscosity), or G linear in φ between the
+    /// phases' ηp/(a λ) (Mixture = modulus; then ηp(φ) = a G(φ) λ(φ)).
     double
     stress_modulus(const double volume_fraction) const;
 
@@ -106,7 +116,8 @@ namespace viscofilm
     /// The viscosity with which the update of one step of length @p k
     /// answers a velocity gradient, s G w k a c_max / (w + k α) with c_max
     /// the largest eigenvalue of the conformation of @p stress, at least
-    /// c_rest (thesis at rest: φ² ηp k/(λφ + k); phases: ηp k/(λ + k)).
+    /// c_rest (thesis at rest: φ² ηp k/(λφ + k); phases: ηp(φ) k/(λ(φ) + k),
+    /// ηp(φ) = a G(φ) λ(φ)).
     template <int dim>
     double
     elastic_viscosity(const double                   volume_fraction,
@@ -120,6 +131,7 @@ namespace viscofilm
 
     Units    units    = Units::dimensionless;
     Rheology rheology = Rheology::thesis_mixture;
+    Mixture  mixture  = Mixture::viscosity;
     /// The coefficient of ∂u/∂t: Res (dimensionless) or ρ in kg/m³ (SI).
     double density = 1.6667e-6;
     Phase  water;
@@ -135,6 +147,10 @@ namespace viscofilm
     /// A property mixed linearly in the clipped φ.
     static double
     mix(const double water_value, const double biofilm_value, const double volume_fraction);
+
+    /// A phase's ηp/(a λ), 0 if it is Newtonian.
+    double
+    modulus(const Phase &phase) const;
 
     std::vector<std::string> ignored_entries;
   };
