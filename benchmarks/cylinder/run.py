@@ -297,7 +297,7 @@ def table(levels, wis, results, schedule):
     return "\n".join(lines)
 
 
-def plot(levels, wis, results, path):
+def plot(levels, wis, results, path, mesh):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -308,7 +308,7 @@ def plot(levels, wis, results, path):
     for level in levels:
         done = [wi for wi in wis if results.get((level, wi)) is not None]
         ax.plot(done, [results[(level, wi)]["K"] for wi in done], "o-",
-                label="viscofilm, refinement %d" % level)
+                label="viscofilm, %s %d" % (mesh, level))
     ax.set(xlabel="Wi = λU/R", ylabel="K = F_x / (μU)",
            title="Confined cylinder, Oldroyd-B, β = 0.59, R/H = 0.5")
     ax.grid(alpha=0.3)
@@ -459,7 +459,8 @@ def main():
                            (" --order %d" % arguments.order if arguments.order else "")
                            + (" --picard %d" % arguments.picard if arguments.picard else ""),
                            arguments.tolerance, machine_description(), text))
-        plot(levels, wis, results, os.path.join(REPO, "doc", "figures", "cylinder_drag.png"))
+        plot(levels, wis, results, os.path.join(REPO, "doc", "figures", "cylinder_drag.png"),
+             "refinement" if base is None else "graded level")
         log("wrote benchmarks/cylinder/results.md and doc/figures/cylinder_drag.png")
 
 
