@@ -306,7 +306,9 @@ def plot(levels, wis, results, path, mesh):
     ax.plot([w for w, _ in published], [k for _, k in published], "ks--", mfc="none",
             label="Alves et al. 2001, Hulsen et al. 2005")
     for level in levels:
-        done = [wi for wi in wis if results.get((level, wi)) is not None]
+        # only steady runs: an unsteady K is no point of the curve
+        done = [wi for wi in wis if results.get((level, wi)) is not None
+                and results[(level, wi)]["steady"]]
         ax.plot(done, [results[(level, wi)]["K"] for wi in done], "o-",
                 label="viscofilm, %s %d" % (mesh, level))
     ax.set(xlabel="Wi = λU/R", ylabel="K = F_x / (μU)",
