@@ -3,7 +3,8 @@
 coefficient K of an Oldroyd-B fluid (β = 0.59, blockage 0.5, creeping flow)
 against the published values, on three meshes.
 
-Usage:  benchmarks/cylinder/run.py [--levels 1,2,3] [--wi 0,0.1,...,0.7]
+Usage:  benchmarks/cylinder/run.py --study [--levels L,...] [--wi W,...] [--np N] [--doc]
+        benchmarks/cylinder/run.py [--levels 1,2,3] [--wi 0,0.1,...,0.7]
             [--graded B [--distance D] [--wake W]]
             [--time-step K] [--refine-time-step] [--order 1|2] [--picard N] [--np N]
             [--work DIR] [--tolerance T] [--doc] [--quick] [--table-only]
@@ -16,10 +17,22 @@ unit depth, so K = F/(μU)). Wi = 0 is the Newtonian fluid of viscosity 1
 step is K on every level (with --refine-time-step: K on the coarsest level,
 halved with each level); the steady K depends on k by 0.12 % between k =
 0.04 and 0.02 at level 2, Wi = 0.5, against a mesh error of −2.6 % there
-(doc/verification.md), so the default keeps k. A run is stopped as soon as it is steady: K changed by
-less than T (relative, default 1e-5) over the last max(1, 2 Wi) time units
-(read from statistics.csv while it runs). A run that reaches its last step
-unsteady is marked in the table.
+(doc/verification.md), so the default keeps k. A run is stopped as soon
+as it is steady: the mean of K over the last max(1, 2 Wi) time units
+differs from the mean over the same time before by less than T (relative,
+default 1e-5; read from statistics.csv while it runs), and K is that last
+mean. A run that reaches its last step unsteady is marked in the table.
+
+--study runs the table of the issue's target: the meshes, Picard cap and
+tolerance of STUDY and, per Wi, the time step and Order chosen by
+measurement (doc/verification.md, "Order 2 (session 23)"); --wi and
+--levels pick rows and columns of it.
+
+Every run directory is named by its mesh, Wi, k and Order
+(runs/levelL[-gradedB-dD-wW]-WiW-kK-oO, runs/levelL[...]-Wi0 for the
+Newtonian solve), so that any call that needs a case reuses it: a finished
+run (result.json next to an unchanged case.prm) is skipped, and an
+interrupted one resumes from its last checkpoint (every 50 steps).
 
 --graded B makes the meshes graded instead of uniform: level L is the
 uniform level B (Geometry/Initial global refinement) refined L − B more
@@ -51,6 +64,7 @@ import argparse
 import json
 import math
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -74,13 +88,26 @@ FORCE_ENTRY = ("Forces", "Boundaries")
 FORCE_COLUMN = "force_x_cylinder"  # matched case-insensitively
 ETA_P = 0.41
 POLL_SECONDS = 2.0
+# A run writes a checkpoint every this many steps, from which an interrupted
+# study resumes it.
+CHECKPOINT_STEPS = 50
+
+# The study (--study): the meshes, and per Wi the time step and Order chosen
+# by the measurements of doc/verification.md ("Order 2 (session 23)"):
+# Order 2 removes the O(k/λ) steady-state error of Order 1's relaxation
+# (Wi = 0.1: 0.01 % from k = 0.04 to 0.02), and from level 3 on K hardly
+# depends on k (Wi = 0.3: 0.003 %), so k = 0.04 at every Wi.
+STUDY = {"graded": 1, "distance": 2.0, "wake": 0.0, "levels": "2,3,4", "picard": 3,
+         "tolerance": 1e-4,
+         "schedule": {0.0: (None, None), 0.1: (0.04, 2), 0.2: (0.04, 2), 0.3: (0.04, 2),
+                      0.4: (0.04, 2), 0.5: (0.04, 2), 0.6: (0.04, 2), 0.7: (0.04, 2)}}
 
 
-def case_prm(directory, mesh, wi, time_step, steps, order=None, picard=None):
+def case_prm(directory, mesh, wi, time_step, steps, order, picard=None):
     """The parameters of one run: prm/cylinder.prm with the mesh (uniform
     level, Cylinder refinement, its distance, the wake's length), Wi, the
-    time step (its order and the Picard cap, if given) and the output
-    directory replaced."""
+    time step, its order (the Picard cap, if given), the checkpoints and the
+    output directory replaced."""
     if wi == 0:
         model = """subsection Model
   set Viscoelastic = false
@@ -124,15 +151,19 @@ end
 subsection Time stepping
   set Time step       = %r
   set Number of steps = %d
+  set Order           = %d
 %send
 subsection Output
   set Directory = %s
   set Interval  = 0
 end
+subsection Checkpointing
+  set Interval = %d
+end
 """ % ((os.path.join(REPO, "prm", "cylinder.prm"),) + mesh + (model, constants, constants,
-       time_step, steps, ("" if order is None else "  set Order           = %d\n" % order)
-       + ("" if picard is None else "  set Maximum Picard iterations = %d\n" % picard),
-       directory))
+       time_step, steps, order,
+       "" if picard is None else "  set Maximum Picard iterations = %d\n" % picard,
+       directory, 0 if wi == 0 else CHECKPOINT_STEPS))
 
 
 def force_column(row):
@@ -144,14 +175,23 @@ def force_column(row):
 
 
 def steadiness(rows, window):
-    """(K, t, relative change of K over the last @p window time units or None
-    if the run is not that long yet)."""
+    """(K, t, change, wobble): K the mean over the last @p window time units,
+    change the relative difference of that mean from the window's before
+    (None if the run is not that long yet), wobble the relative range of K
+    in the last window. Means, not the last value: at Wi = 0.5 with three
+    Picard iterations K cycles with period 4 steps by ±4e-4 about a steady
+    mean (doc/verification.md, "Order 2 (session 23)")."""
     key = force_column(rows[-1])
-    t_end, k_end = rows[-1]["time"], rows[-1][key]
-    if t_end < window:
-        return k_end, t_end, None
-    recent = [row[key] for row in rows if row["time"] >= t_end - window]
-    return k_end, t_end, max(abs(k - k_end) for k in recent) / abs(k_end)
+    t_end = rows[-1]["time"]
+    if window == 0:
+        return rows[-1][key], t_end, None, 0.0
+    last = [row[key] for row in rows if row["time"] > t_end - window]
+    mean = sum(last) / len(last)
+    wobble = (max(last) - min(last)) / abs(mean)
+    if t_end < 2 * window:
+        return mean, t_end, None, wobble
+    before = [row[key] for row in rows if t_end - 2 * window < row["time"] <= t_end - window]
+    return mean, t_end, abs(mean - sum(before) / len(before)) / abs(mean), wobble
 
 
 def read_rows(path):
@@ -164,21 +204,33 @@ def read_rows(path):
 
 def run_to_steady_state(binary, ranks, directory, prm_text, window, tolerance):
     """Run one case (or reuse its result.json) and return its result. With
-    @p window None the run is one steady Stokes solve (steady by definition)."""
+    @p window None the run is one steady Stokes solve (steady by definition).
+    A run interrupted before (the same case.prm, no result.json) resumes from
+    its last checkpoint."""
     os.makedirs(directory, exist_ok=True)
     prm = os.path.join(directory, "case.prm")
     result_file = os.path.join(directory, "result.json")
-    if os.path.exists(result_file) and os.path.exists(prm) and open(prm).read() == prm_text:
+    same_case = os.path.exists(prm) and open(prm).read() == prm_text
+    if same_case and os.path.exists(result_file):
         return json.load(open(result_file))
-    with open(prm, "w") as f:
-        f.write(prm_text)
     statistics = os.path.join(directory, "statistics.csv")
-    if os.path.exists(statistics):
-        os.remove(statistics)
+    command = prm
+    if same_case and os.path.exists(os.path.join(directory, "checkpoint")):
+        command = os.path.join(directory, "resume.prm")
+        with open(command, "w") as f:
+            f.write("include %s\nsubsection Checkpointing\n  set Resume = true\nend\n" % prm)
+        log("resuming %s from its checkpoint" % directory)
+    else:
+        with open(prm, "w") as f:
+            f.write(prm_text)
+        for stale in ("statistics.csv", "checkpoint", "checkpoint.old"):
+            shutil.rmtree(os.path.join(directory, stale), ignore_errors=True)
+            if os.path.isfile(os.path.join(directory, stale)):
+                os.remove(os.path.join(directory, stale))
     start = time.time()
-    with open(os.path.join(directory, "run.log"), "w") as output:
+    with open(os.path.join(directory, "run.log"), "a") as output:
         # its own session, so that stopping it stops mpirun and its ranks only
-        process = subprocess.Popen(["mpirun", "-np", str(ranks), binary, prm], stdout=output,
+        process = subprocess.Popen(["mpirun", "-np", str(ranks), binary, command], stdout=output,
                                    stderr=subprocess.STDOUT, env=mpi_environment(),
                                    start_new_session=True)
         steady = False
@@ -198,8 +250,9 @@ def run_to_steady_state(binary, ranks, directory, prm_text, window, tolerance):
         die("the run in %s failed (exit %d); see its run.log" % (directory, process.returncode))
     if not rows:
         die("the run in %s wrote no statistics.csv" % directory)
-    k, t, change = steadiness(rows, window or 0.0)
+    k, t, change, wobble = steadiness(rows, window or 0.0)
     result = {"K": k, "time": t, "steps": len(rows) - 1, "wall": wall, "change": change,
+              "wobble": wobble, "tolerance": tolerance,
               "steady": window is None or steady or (change is not None and change < tolerance)}
     with open(result_file, "w") as f:
         json.dump(result, f, indent=1)
@@ -218,11 +271,15 @@ def order_and_extrapolation(values):
     return p, k3 + (k3 - k2) / (2 ** p - 1)
 
 
-def table(levels, wis, results):
-    header = ("| Wi | " + " | ".join("K, level %d" % level for level in levels)
+def table(levels, wis, results, schedule):
+    """The markdown table; @p schedule(level, wi) gives a case's (k, Order)."""
+    header = ("| Wi | k | Order | " + " | ".join("K, level %d" % level for level in levels)
               + " | published K | error of the finest | order p | extrapolated K |")
-    lines = [header, "|" + "---|" * (len(levels) + 5)]
+    lines = [header, "|" + "---|" * (len(levels) + 7)]
     for wi in wis:
+        steps = sorted({schedule(level, wi) for level in levels}, reverse=True)
+        k_cell = ", ".join("%g" % k for k, _ in steps) if wi > 0 else "–"
+        order_cell = ", ".join(sorted({"%d" % o for _, o in steps})) if wi > 0 else "–"
         runs = [results.get((level, wi)) for level in levels]
         cells = ["–" if run is None else
                  "%.3f%s" % (run["K"], "" if run["steady"] else " (unsteady)") for run in runs]
@@ -233,14 +290,14 @@ def table(levels, wis, results):
         # the order needs three consecutive meshes
         p, extrapolated = (order_and_extrapolation(finished) if None not in runs[-3:]
                            else (None, None))
-        lines.append("| %g | %s | %s | %s | %s | %s |" % (
-            wi, " | ".join(cells), published or "–", error,
+        lines.append("| %g | %s | %s | %s | %s | %s | %s | %s |" % (
+            wi, k_cell, order_cell, " | ".join(cells), published or "–", error,
             "%.2f" % p if p is not None else "–",
             "%.3f" % extrapolated if extrapolated is not None else "–"))
     return "\n".join(lines)
 
 
-def plot(levels, wis, results, path):
+def plot(levels, wis, results, path, mesh):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -249,9 +306,11 @@ def plot(levels, wis, results, path):
     ax.plot([w for w, _ in published], [k for _, k in published], "ks--", mfc="none",
             label="Alves et al. 2001, Hulsen et al. 2005")
     for level in levels:
-        done = [wi for wi in wis if results.get((level, wi)) is not None]
+        # only steady runs: an unsteady K is no point of the curve
+        done = [wi for wi in wis if results.get((level, wi)) is not None
+                and results[(level, wi)]["steady"]]
         ax.plot(done, [results[(level, wi)]["K"] for wi in done], "o-",
-                label="viscofilm, refinement %d" % level)
+                label="viscofilm, %s %d" % (mesh, level))
     ax.set(xlabel="Wi = λU/R", ylabel="K = F_x / (μU)",
            title="Confined cylinder, Oldroyd-B, β = 0.59, R/H = 0.5")
     ax.grid(alpha=0.3)
@@ -263,9 +322,15 @@ def plot(levels, wis, results, path):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--levels", default="1,2,3",
-                        help="mesh refinement levels (2^(L+3) cells around the cylinder)")
-    parser.add_argument("--wi", default="0,0.1,0.2,0.3,0.4,0.5,0.6,0.7")
+    parser.add_argument("--levels", default=None,
+                        help="mesh refinement levels (2^(L+3) cells around the cylinder; "
+                        "default 1,2,3, with --study the study's)")
+    parser.add_argument("--wi", default=None,
+                        help="Weissenberg numbers (default 0, 0.1, ..., 0.7)")
+    parser.add_argument("--study", action="store_true",
+                        help="the study's table: its meshes, Picard cap and tolerance, and "
+                        "per Wi its time step and Order (STUDY); --wi and --levels select "
+                        "from it")
     parser.add_argument("--time-step", type=float, default=0.04,
                         help="time step (on the coarsest level with --refine-time-step)")
     parser.add_argument("--refine-time-step", action="store_true",
@@ -290,6 +355,11 @@ def main():
     parser.add_argument("--table-only", action="store_true",
                         help="run nothing; tabulate the finished runs")
     arguments = parser.parse_args()
+    if arguments.study:
+        for name in ("graded", "distance", "wake", "picard", "tolerance"):
+            setattr(arguments, name, STUDY[name])
+        arguments.levels = arguments.levels or STUDY["levels"]
+    arguments.levels = arguments.levels or "1,2,3"
     levels = sorted(int(level) for level in arguments.levels.split(","))
     base = arguments.graded
     if base is not None and not 0 <= base <= levels[0]:
@@ -301,11 +371,29 @@ def main():
             return (level, 0, 1.0, 0.0)
         return (base, level - base, arguments.distance, arguments.wake)
 
+    def schedule(level, wi):
+        """(time step, Order) of a case"""
+        if arguments.study:
+            return STUDY["schedule"][wi]
+        return (arguments.time_step / (2 ** (level - levels[0]) if arguments.refine_time_step
+                                       else 1), arguments.order or 1)
+
     def directory_of(level, wi):
+        """named by everything that makes a case, so that any call reuses it"""
         name = ("level%d" % level if base is None else
                 "level%d-graded%d-d%g-w%g" % (level, base, arguments.distance, arguments.wake))
-        return os.path.join(arguments.work, "%s-Wi%g" % (name, wi))
-    wis = sorted(float(wi) for wi in arguments.wi.split(","))
+        if wi > 0:
+            name += "-Wi%g-k%g-o%d" % ((wi,) + schedule(level, wi))
+        else:
+            name += "-Wi0"
+        return os.path.join(arguments.work, name)
+    wis = sorted(float(wi) for wi in (arguments.wi or "0,0.1,0.2,0.3,0.4,0.5,0.6,0.7").split(","))
+    if arguments.study:
+        unknown = [wi for wi in wis if wi not in STUDY["schedule"]]
+        if unknown:
+            die("--study: no time step chosen for Wi = %s; accepted: %s" % (
+                ", ".join("%g" % wi for wi in unknown),
+                ", ".join("%g" % wi for wi in sorted(STUDY["schedule"]))))
     if arguments.quick:
         levels, wis = levels[:1], [0.0, 0.1]
     build, binary = ensure_binary()
@@ -323,14 +411,15 @@ def main():
                     results[(level, wi)] = json.load(open(result_file))
     start = time.time()
     for number, (level, wi) in enumerate(cases):
-        k = arguments.time_step / (2 ** (level - levels[0]) if arguments.refine_time_step else 1)
+        # the Newtonian case is one steady Stokes solve at Order 1
+        k, order = schedule(level, wi) if wi > 0 else (arguments.time_step, 1)
         window = max(1.0, 2 * wi) if wi > 0 else None
         end_time = 10 + 30 * wi  # far beyond steady state (3.2 s of relaxation at Wi = 0.7)
         steps = 1 if wi == 0 else math.ceil(end_time / k)
         directory = directory_of(level, wi)
         results[(level, wi)] = run_to_steady_state(
             binary, arguments.np, directory,
-            case_prm(directory, mesh_of(level), wi, k, steps, arguments.order, arguments.picard),
+            case_prm(directory, mesh_of(level), wi, k, steps, order, arguments.picard),
             window,
             arguments.tolerance)
         result = results[(level, wi)]
@@ -351,21 +440,29 @@ def main():
                "steady" if result["steady"] else "NOT steady", result["wall"],
                (time.time() - start) / 60, left / 60))
 
-    text = table(levels, wis, results)
+    text = table(levels, wis, results, schedule)
     print(text)
     if arguments.doc:
         with open(os.path.join(SCRIPT_DIR, "results.md"), "w") as f:
-            f.write("<!-- benchmarks/cylinder/run.py --doc --levels %s%s --time-step %g%s%s"
-                    " --tolerance %g; %s -->\n%s\n"
-                    % (arguments.levels,
-                       "" if base is None else " --graded %d --distance %g --wake %g"
-                       % (base, arguments.distance, arguments.wake),
-                       arguments.time_step,
-                       " --refine-time-step" if arguments.refine_time_step else "",
-                       (" --order %d" % arguments.order if arguments.order else "")
-                       + (" --picard %d" % arguments.picard if arguments.picard else ""),
-                       arguments.tolerance, machine_description(), text))
-        plot(levels, wis, results, os.path.join(REPO, "doc", "figures", "cylinder_drag.png"))
+            if arguments.study:
+                f.write("<!-- benchmarks/cylinder/run.py --doc --study (levels %s, --graded %d "
+                        "--distance %g --wake %g --picard %d --tolerance %g; k and Order per "
+                        "row); %s -->\n%s\n"
+                        % (arguments.levels, base, arguments.distance, arguments.wake,
+                           arguments.picard, arguments.tolerance, machine_description(), text))
+            else:
+                f.write("<!-- benchmarks/cylinder/run.py --doc --levels %s%s --time-step %g%s%s"
+                        " --tolerance %g; %s -->\n%s\n"
+                        % (arguments.levels,
+                           "" if base is None else " --graded %d --distance %g --wake %g"
+                           % (base, arguments.distance, arguments.wake),
+                           arguments.time_step,
+                           " --refine-time-step" if arguments.refine_time_step else "",
+                           (" --order %d" % arguments.order if arguments.order else "")
+                           + (" --picard %d" % arguments.picard if arguments.picard else ""),
+                           arguments.tolerance, machine_description(), text))
+        plot(levels, wis, results, os.path.join(REPO, "doc", "figures", "cylinder_drag.png"),
+             "refinement" if base is None else "graded level")
         log("wrote benchmarks/cylinder/results.md and doc/figures/cylinder_drag.png")
 
 
