@@ -77,11 +77,13 @@ def source_of(build):
     return source, "%s at %s" % (head, source)
 
 
-def run_case(binary, prm_text, directory, ranks, reuse=False):
+def run_case(binary, prm_text, directory, ranks, reuse=False, threads=None):
     """Run viscofilm on @p ranks ranks with prm_text (its Output/Directory must
     be @p directory) and return wall time [s], peak memory per rank [MiB] and
     the log. With reuse, a finished run in directory (run.log with the timer
-    table) is read instead of run again ("cached": True)."""
+    table) is read instead of run again ("cached": True). With threads,
+    viscofilm --threads threads, and the ranks unbound (Open MPI binds each
+    rank to one core by default when there are at most two)."""
     os.makedirs(directory, exist_ok=True)
     log_file = os.path.join(directory, "run.log")
     cached = reuse and os.path.exists(log_file) and "Total wallclock" in open(log_file).read()
@@ -90,7 +92,12 @@ def run_case(binary, prm_text, directory, ranks, reuse=False):
         with open(prm, "w") as f:
             f.write(prm_text)
         start = time.time()
-        result = subprocess.run(["mpirun", "-np", str(ranks), binary, prm],
+        command = ["mpirun", "-np", str(ranks)]
+        if threads is not None:
+            command += ["--bind-to", "none", binary, "--threads", str(threads)]
+        else:
+            command += [binary]
+        result = subprocess.run(command + [prm],
                                 capture_output=True, text=True, env=mpi_environment())
         wall = time.time() - start
         with open(log_file, "w") as f:

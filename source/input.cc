@@ -205,6 +205,7 @@ namespace viscofilm
                                const unsigned int component) const
   {
     Assert(parser, ExcInternalError());
+    std::lock_guard<std::mutex> lock(time_lock);
     parser->set_time(time);
     return parser->value(point, component);
   }
@@ -217,6 +218,7 @@ namespace viscofilm
                                       Vector<double> &  values) const
   {
     Assert(parser, ExcInternalError());
+    std::lock_guard<std::mutex> lock(time_lock);
     parser->set_time(time);
     parser->vector_value(point, values);
   }

@@ -1,5 +1,6 @@
 // viscofilm: command line entry point. The physics lives in the library.
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <viscofilm/input.h>
@@ -11,6 +12,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <cstdlib>
 #include <vector>
 
 namespace
@@ -21,7 +23,31 @@ namespace
     "       viscofilm --print-parameters    print every parameter with its\n"
     "                                       documentation and default\n"
     "       viscofilm --help                print this message\n"
-    "Run in parallel with: mpirun -np N viscofilm FILE.prm\n";
+    "Run in parallel with: mpirun -np N viscofilm FILE.prm\n"
+    "Threads per MPI rank (assembly): viscofilm --threads T FILE.prm; default\n"
+    "1, or DEAL_II_NUM_THREADS if set, which also caps T.\n";
+
+  /// The number of threads @p text asks for (a whole number >= 1), or throw
+  /// with a message naming @p name.
+  unsigned int
+  thread_count(const std::string &text, const std::string &name)
+  {
+    std::size_t end   = 0;
+    long        count = 0;
+    try
+      {
+        count = std::stol(text, &end);
+      }
+    catch (...)
+      {
+        end = 0;
+      }
+    viscofilm::check_input(end > 0 && end == text.size() && count >= 1 &&
+                             count <= 1024,
+                           name + " must be a whole number of threads per MPI "
+                                  "rank from 1 to 1024, got \"" + text + "\"");
+    return count;
+  }
 
   /// Parse @p filename into @p prm. "include FILE" (outside subsections)
   /// reads FILE first, relative to the including file's directory (deal.II
@@ -225,7 +251,31 @@ main(int argc, char *argv[])
   using namespace viscofilm;
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const bool is_root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-  const std::vector<std::string> args(argv + 1, argv + argc);
+  std::vector<std::string> args(argv + 1, argv + argc);
+
+  // Threads within each rank: --threads, else DEAL_II_NUM_THREADS, else 1
+  // (MPI_InitFinalize above); deal.II caps the count at DEAL_II_NUM_THREADS.
+  try
+    {
+      const char *environment = std::getenv("DEAL_II_NUM_THREADS");
+      if (!args.empty() && args[0] == "--threads")
+        {
+          check_input(args.size() > 1,
+                      "--threads must be followed by the number of threads per MPI rank");
+          MultithreadInfo::set_thread_limit(thread_count(args[1], "--threads"));
+          args.erase(args.begin(), args.begin() + 2);
+        }
+      else if (environment != nullptr)
+        MultithreadInfo::set_thread_limit(
+          thread_count(environment, "the environment variable DEAL_II_NUM_THREADS"));
+    }
+  catch (const std::exception &e)
+    {
+      if (is_root)
+        std::cerr << "viscofilm: error on the command line: " << error_message(e)
+                  << std::endl;
+      return 2;
+    }
 
   if (args.size() == 1 && (args[0] == "--help" || args[0] == "-h"))
     {

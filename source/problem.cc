@@ -1,3 +1,4 @@
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/utilities.h>
 
 #include <deal.II/grid/grid_tools.h>
@@ -143,7 +144,8 @@ namespace viscofilm
           << stokes.n_dofs() << " Stokes dofs, "
           << stress.dof_handler().n_dofs() << " stress dofs, "
           << volume_fraction.dof_handler().n_dofs() << " volume fraction dofs, "
-          << Utilities::MPI::n_mpi_processes(mpi_communicator) << " MPI rank(s)"
+          << Utilities::MPI::n_mpi_processes(mpi_communicator) << " MPI rank(s) × "
+          << MultithreadInfo::n_threads() << " thread(s)"
           << std::endl;
   }
 
@@ -294,11 +296,7 @@ namespace viscofilm
       &volume_fraction.dof_handler(),
       &volume_fraction.solution(),
       &parameters.verification.body_force,
-      [this](const typename DoFHandler<dim>::active_cell_iterator &cell,
-             const std::vector<double> &                phi,
-             std::vector<SymmetricTensor<2, dim>> &       tau) {
-        stress.stress_at_quadrature_points(cell, phi, tau);
-      }};
+      &stress};
     {
       TimerOutput::Scope t(*computing_timer, "assemble stokes");
       stokes.assemble(coefficients);

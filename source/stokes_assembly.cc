@@ -3,6 +3,7 @@
 // boundary tractions on the right; each cell's matrix goes to the linear-
 // solver strategy (stokes_linear_solver.h).
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/work_stream.h>
 
 #include <deal.II/lac/affine_constraints.templates.h>
 
@@ -14,6 +15,7 @@
 #include <viscofilm/geometry.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/stokes_linear_solver.h>
+#include <viscofilm/stress.h>
 
 #include <algorithm>
 #include <cmath>
@@ -52,6 +54,92 @@ namespace viscofilm
   }
 
 
+  namespace
+  {
+    /// A WorkStream thread's FEValues of the fields the momentum equation
+    /// reads, Stokes', φ's and c's, and its arrays at the quadrature points
+    /// (step-32's scratch data).
+    template <int dim>
+    struct AssemblyScratch
+    {
+      AssemblyScratch(const Mapping<dim> &      mapping,
+                      const FiniteElement<dim> &stokes_fe,
+                      const FiniteElement<dim> &volume_fraction_fe,
+                      const FiniteElement<dim> &stress_fe,
+                      const Quadrature<dim> &   quadrature,
+                      const Quadrature<dim - 1> &face_quadrature)
+        : fe_values(mapping,
+                    stokes_fe,
+                    quadrature,
+                    update_values | update_gradients | update_quadrature_points |
+                      update_JxW_values)
+        , volume_fraction_values(mapping, volume_fraction_fe, quadrature, update_values)
+        , stress_values(mapping, stress_fe, quadrature, update_values)
+        , fe_face_values(mapping,
+                         stokes_fe,
+                         face_quadrature,
+                         update_values | update_normal_vectors |
+                           update_quadrature_points | update_JxW_values)
+        , volume_fraction(quadrature.size())
+        , old_velocity(quadrature.size())
+        , older_velocity(quadrature.size()) // zero unless BDF2
+        , body_force(quadrature.size(), Vector<double>(dim))
+        , conformation(quadrature.size(), Vector<double>(stress_fe.n_components()))
+        , tau(quadrature.size())
+        , iterate_strain_rate(quadrature.size())
+        , phi_u(stokes_fe.n_dofs_per_cell())
+        , symgrad_phi_u(stokes_fe.n_dofs_per_cell())
+        , div_phi_u(stokes_fe.n_dofs_per_cell())
+        , phi_p(stokes_fe.n_dofs_per_cell())
+      {}
+
+      AssemblyScratch(const AssemblyScratch &other)
+        : AssemblyScratch(other.fe_values.get_mapping(),
+                          other.fe_values.get_fe(),
+                          other.volume_fraction_values.get_fe(),
+                          other.stress_values.get_fe(),
+                          other.fe_values.get_quadrature(),
+                          other.fe_face_values.get_quadrature())
+      {}
+
+      FEValues<dim>                        fe_values;
+      FEValues<dim>                        volume_fraction_values;
+      FEValues<dim>                        stress_values;
+      FEFaceValues<dim>                    fe_face_values;
+      std::vector<double>                  volume_fraction;
+      std::vector<Tensor<1, dim>>          old_velocity;
+      std::vector<Tensor<1, dim>>          older_velocity;
+      std::vector<Vector<double>>          body_force;
+      std::vector<Vector<double>>          conformation;
+      std::vector<SymmetricTensor<2, dim>> tau;
+      std::vector<SymmetricTensor<2, dim>> iterate_strain_rate;
+      std::vector<Tensor<1, dim>>          phi_u;
+      std::vector<SymmetricTensor<2, dim>> symgrad_phi_u;
+      std::vector<double>                  div_phi_u;
+      std::vector<double>                  phi_p;
+    };
+
+
+    /// A cell's matrix (with η and JxW for the strategy) and right-hand side.
+    template <int dim>
+    struct AssemblyCopy
+    {
+      AssemblyCopy(const unsigned int dofs_per_cell, const unsigned int n_q_points)
+        : rhs(dofs_per_cell)
+      {
+        cell.JxW.resize(n_q_points);
+        cell.viscosity.resize(n_q_points);
+        cell.elastic_viscosity.resize(n_q_points, 0.0);
+        cell.dof_indices.resize(dofs_per_cell);
+        cell.matrix.reinit(dofs_per_cell, dofs_per_cell);
+      }
+
+      StokesCellMatrix<dim> cell;
+      Vector<double>        rhs;
+    };
+  } // namespace
+
+
   template <int dim>
   void
   StokesSolver<dim>::assemble(const Coefficients &coefficients)
@@ -64,54 +152,19 @@ namespace viscofilm
     system_rhs = 0;
 
     const Quadrature<dim> quadrature = this->quadrature();
-    const Mapping<dim> &  mapping    = Geometry<dim>::mapping(triangulation);
-    FEValues<dim>     fe_values(mapping,
-                          fe,
-                          quadrature,
-                          update_values | update_gradients |
-                            update_quadrature_points | update_JxW_values);
-    FEValues<dim>     phi_fe_values(mapping,
-                              coefficients.volume_fraction_dof_handler->get_fe(),
-                              quadrature,
-                              update_values);
     // The prescribed normal traction −P n of pressure boundaries.
     const QGauss<dim - 1> face_quadrature(fe.degree + 1);
-    FEFaceValues<dim>     fe_face_values(mapping,
-                                     fe,
-                                     face_quadrature,
-                                     update_values | update_normal_vectors |
-                                       update_quadrature_points | update_JxW_values);
-
-    const unsigned int dofs_per_cell = fe.n_dofs_per_cell();
-    const unsigned int n_q_points    = quadrature.size();
+    const unsigned int    dofs_per_cell = fe.n_dofs_per_cell();
+    const unsigned int    n_q_points    = quadrature.size();
     const FEValuesExtractors::Vector velocities(0);
     const FEValuesExtractors::Scalar pressure(dim);
 
-    FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
-    Vector<double>     cell_rhs(dofs_per_cell);
-    std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
-
-    std::vector<double>                volume_fraction(n_q_points);
-    std::vector<double>                viscosity(n_q_points);
-    std::vector<Tensor<1, dim>>          old_velocity(n_q_points);
-    std::vector<Tensor<1, dim>>        older_velocity(n_q_points); // zero unless BDF2
-    std::vector<Vector<double>>        body_force(n_q_points, Vector<double>(dim));
-    std::vector<SymmetricTensor<2, dim>> tau(n_q_points);
-    std::vector<double>                elastic_viscosity(n_q_points, 0.0);
-    std::vector<SymmetricTensor<2, dim>> iterate_strain_rate(n_q_points);
     const bool implicit_elastic =
       parameters.implicit_elastic_viscosity && model.viscoelastic;
     if (implicit_elastic && assemble_matrix)
       elastic_viscosity_cache.resize(triangulation.n_locally_owned_active_cells() *
                                      n_q_points);
-    std::size_t cached = 0;
-    const bool                         use_feet = !old_velocity_at_feet.empty();
-    unsigned int                       foot     = 0;
-
-    std::vector<Tensor<1, dim>>          phi_u(dofs_per_cell);
-    std::vector<SymmetricTensor<2, dim>> symgrad_phi_u(dofs_per_cell);
-    std::vector<double>                div_phi_u(dofs_per_cell);
-    std::vector<double>                phi_p(dofs_per_cell);
+    const bool use_feet = !old_velocity_at_feet.empty();
 
     // Res ∂u/∂t (ρ ∂u/∂t in SI) by implicit Euler, (Res/k)(u − u^n, v), or
     // with u^{n-1} by BDF2 with variable steps, ω = k_n/k_{n-1}:
@@ -125,140 +178,188 @@ namespace viscofilm
     const double older_coefficient =
       model.density / coefficients.time_step * omega * omega / (1 + omega);
     const ExpressionAt<dim> body_force_now = coefficients.body_force->at(coefficients.time);
+    const ElasticStress<dim> &elastic_stress = *coefficients.elastic_stress;
 
+    // The owned cells in a list: a cell's number in it locates its
+    // quadrature points' entries in the per-point arrays (feet, η_e cache).
+    std::vector<typename DoFHandler<dim>::active_cell_iterator> owned_cells;
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
+        owned_cells.push_back(cell);
+
+    const auto assemble_cell = [&](const typename decltype(owned_cells)::const_iterator &it,
+                                   AssemblyScratch<dim> &                             scratch,
+                                   AssemblyCopy<dim> &                                copy) {
+      const auto &       cell  = *it;
+      const std::size_t  first = (it - owned_cells.begin()) * n_q_points;
+      FEValues<dim> &    fe_values = scratch.fe_values;
+      StokesCellMatrix<dim> &data  = copy.cell;
+      std::vector<double> &viscosity         = data.viscosity;
+      std::vector<double> &elastic_viscosity = data.elastic_viscosity;
+      std::vector<double> &volume_fraction   = scratch.volume_fraction;
+
+      fe_values.reinit(cell);
+      data.cell                 = cell;
+      data.volume_fraction_cell = cell_of(*coefficients.volume_fraction_dof_handler, cell);
+      data.volume_fraction      = coefficients.volume_fraction;
+      data.mass_coefficient     = mass_coefficient;
+      data.JxW                  = fe_values.get_JxW_values();
+      scratch.volume_fraction_values.reinit(data.volume_fraction_cell);
+      scratch.volume_fraction_values.get_function_values(*coefficients.volume_fraction,
+                                                         volume_fraction);
+      for (unsigned int q = 0; q < n_q_points; ++q)
+        viscosity[q] = model.viscosity(volume_fraction[q]);
+      scratch.stress_values.reinit(cell_of(elastic_stress.dof_handler(), cell));
+      scratch.stress_values.get_function_values(elastic_stress.solution(),
+                                                scratch.conformation);
+      for (unsigned int q = 0; q < n_q_points; ++q)
+        scratch.tau[q] = elastic_stress.stress_of(scratch.conformation[q], volume_fraction[q]);
+      average_viscosity(parameters.averaging, data.JxW, viscosity);
+      if (implicit_elastic)
         {
-          fe_values.reinit(cell);
-          const auto phi_cell = cell_of(*coefficients.volume_fraction_dof_handler, cell);
-          phi_fe_values.reinit(phi_cell);
-          phi_fe_values.get_function_values(*coefficients.volume_fraction,
-                                            volume_fraction);
-          for (unsigned int q = 0; q < n_q_points; ++q)
-            viscosity[q] = model.viscosity(volume_fraction[q]);
-          if (coefficients.elastic_stress)
-            coefficients.elastic_stress(cell, volume_fraction, tau);
-          average_viscosity(parameters.averaging, fe_values.get_JxW_values(), viscosity);
-          if (implicit_elastic)
-            {
-              // From τ^n (the stress iterate when the matrix is built, at the
-              // step's first Picard iteration), kept for the step: matrix and
-              // right-hand side must use the same η_e for the two to cancel (added
-              // after the averaging, which is a model of ηs only).
-              fe_values[velocities].get_function_symmetric_gradients(current_solution,
-                                                                     iterate_strain_rate);
-              for (unsigned int q = 0; q < n_q_points; ++q, ++cached)
-                {
-                  if (assemble_matrix)
-                    elastic_viscosity_cache[cached] =
-                      model.elastic_viscosity(volume_fraction[q],
-                                              coefficients.time_step,
-                                              tau[q]);
-                  elastic_viscosity[q] = elastic_viscosity_cache[cached];
-                  viscosity[q] += elastic_viscosity[q];
-                }
-            }
-
-          if (use_feet)
-            for (unsigned int q = 0; q < n_q_points; ++q, ++foot)
-              {
-                old_velocity[q] = old_velocity_at_feet[foot];
-                if (bdf2)
-                  older_velocity[q] = previous_velocity_at_feet[foot];
-              }
-          else
-            fe_values[velocities].get_function_values(old_solution, old_velocity);
-          body_force_now.vector_value_list(fe_values.get_quadrature_points(), body_force);
-
-          // With the matrix current, the cell matrix is needed only to move
-          // the inhomogeneities of constrained dofs to the right-hand side:
-          // boundary values, and hanging dofs constrained to boundary dofs,
-          // which interior cells touching the wall at a vertex also hold.
-          cell->get_dof_indices(local_dof_indices);
-          const bool need_matrix =
-            assemble_matrix ||
-            std::any_of(local_dof_indices.begin(),
-                        local_dof_indices.end(),
-                        [this](const types::global_dof_index i) {
-                          return constraints.is_inhomogeneously_constrained(i);
-                        });
-          cell_matrix = 0;
-          cell_rhs    = 0;
+          // From τ^n (the stress iterate when the matrix is built, at the
+          // step's first Picard iteration), kept for the step: matrix and
+          // right-hand side must use the same η_e for the two to cancel (added
+          // after the averaging, which is a model of ηs only).
+          fe_values[velocities].get_function_symmetric_gradients(current_solution,
+                                                                 scratch.iterate_strain_rate);
           for (unsigned int q = 0; q < n_q_points; ++q)
             {
-              for (unsigned int k = 0; k < dofs_per_cell; ++k)
-                {
-                  phi_u[k]         = fe_values[velocities].value(k, q);
-                  symgrad_phi_u[k] = fe_values[velocities].symmetric_gradient(k, q);
-                  div_phi_u[k]     = fe_values[velocities].divergence(k, q);
-                  phi_p[k]         = fe_values[pressure].value(k, q);
-                }
-              const double       JxW = fe_values.JxW(q);
-              Tensor<1, dim> force;
-              for (unsigned int d = 0; d < dim; ++d)
-                force[d] = body_force[q][d];
-              const Tensor<1, dim> rhs_vector =
-                old_coefficient * old_velocity[q] + force -
-                older_coefficient * older_velocity[q];
-              // s(φ) τ: φ τ in the thesis (eq. 2.34), τ for phases.
-              // With the implicit elastic viscosity η_e in the matrix, its
-              // explicit twin 2 η_e D(u^l) joins s τ on the right.
-              const SymmetricTensor<2, dim> phi_tau =
-                model.stress_coupling(volume_fraction[q]) * tau[q] -
-                2 * elastic_viscosity[q] * iterate_strain_rate[q];
-
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                {
-                  for (unsigned int j = 0; j < dofs_per_cell && need_matrix; ++j)
-                    {
-                      cell_matrix(i, j) +=
-                        (mass_coefficient * phi_u[i] * phi_u[j] +
-                         2 * viscosity[q] * (symgrad_phi_u[i] * symgrad_phi_u[j]) -
-                         div_phi_u[i] * phi_p[j] - phi_p[i] * div_phi_u[j]) *
-                        JxW;
-                    }
-                  cell_rhs(i) += (rhs_vector * phi_u[i] -
-                                  phi_tau * symgrad_phi_u[i]) *
-                                 JxW;
-                }
+              if (assemble_matrix)
+                elastic_viscosity_cache[first + q] =
+                  model.elastic_viscosity(volume_fraction[q],
+                                          coefficients.time_step,
+                                          scratch.tau[q]);
+              elastic_viscosity[q] = elastic_viscosity_cache[first + q];
+              viscosity[q] += elastic_viscosity[q];
             }
-
-          // −∫ P n·v ds (Type = pressure; outflow has P = 0).
-          for (const auto &face : cell->face_iterators())
-            if (face->at_boundary() &&
-                boundary_conditions.boundary(face->boundary_id()).type ==
-                  BoundaryConditions<dim>::Type::pressure)
-              {
-                const ParsedExpression<dim> &pressure =
-                  boundary_conditions.boundary(face->boundary_id()).pressure;
-                fe_face_values.reinit(cell, face);
-                for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                  {
-                    const double traction =
-                      pressure.value(fe_face_values.quadrature_point(q), coefficients.time) *
-                      fe_face_values.JxW(q);
-                    for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                      cell_rhs(i) -= traction * (fe_face_values[velocities].value(i, q) *
-                                                 fe_face_values.normal_vector(q));
-                  }
-              }
-
-          if (assemble_matrix)
-            linear_solver->add_cell_matrix({cell,
-                                            fe_values,
-                                            viscosity,
-                                            elastic_viscosity,
-                                            mass_coefficient,
-                                            phi_cell,
-                                            *coefficients.volume_fraction,
-                                            local_dof_indices,
-                                            cell_matrix},
-                                           constraints);
-          constraints.distribute_local_to_global(cell_rhs,
-                                                 local_dof_indices,
-                                                 system_rhs,
-                                                 cell_matrix);
         }
+
+      if (use_feet)
+        for (unsigned int q = 0; q < n_q_points; ++q)
+          {
+            scratch.old_velocity[q] = old_velocity_at_feet[first + q];
+            if (bdf2)
+              scratch.older_velocity[q] = previous_velocity_at_feet[first + q];
+          }
+      else
+        fe_values[velocities].get_function_values(old_solution, scratch.old_velocity);
+      body_force_now.vector_value_list(fe_values.get_quadrature_points(),
+                                       scratch.body_force);
+
+      // With the matrix current, the cell matrix is needed only to move
+      // the inhomogeneities of constrained dofs to the right-hand side:
+      // boundary values, and hanging dofs constrained to boundary dofs,
+      // which interior cells touching the wall at a vertex also hold.
+      cell->get_dof_indices(data.dof_indices);
+      const bool need_matrix =
+        assemble_matrix ||
+        std::any_of(data.dof_indices.begin(),
+                    data.dof_indices.end(),
+                    [this](const types::global_dof_index i) {
+                      return constraints.is_inhomogeneously_constrained(i);
+                    });
+      FullMatrix<double> &cell_matrix = data.matrix;
+      Vector<double> &    cell_rhs    = copy.rhs;
+      cell_matrix = 0;
+      cell_rhs    = 0;
+      for (unsigned int q = 0; q < n_q_points; ++q)
+        {
+          for (unsigned int k = 0; k < dofs_per_cell; ++k)
+            {
+              scratch.phi_u[k]         = fe_values[velocities].value(k, q);
+              scratch.symgrad_phi_u[k] = fe_values[velocities].symmetric_gradient(k, q);
+              scratch.div_phi_u[k]     = fe_values[velocities].divergence(k, q);
+              scratch.phi_p[k]         = fe_values[pressure].value(k, q);
+            }
+          const auto &   phi_u         = scratch.phi_u;
+          const auto &   symgrad_phi_u = scratch.symgrad_phi_u;
+          const auto &   div_phi_u     = scratch.div_phi_u;
+          const auto &   phi_p         = scratch.phi_p;
+          const double   JxW           = fe_values.JxW(q);
+          Tensor<1, dim> force;
+          for (unsigned int d = 0; d < dim; ++d)
+            force[d] = scratch.body_force[q][d];
+          const Tensor<1, dim> rhs_vector = old_coefficient * scratch.old_velocity[q] +
+                                            force -
+                                            older_coefficient * scratch.older_velocity[q];
+          // s(φ) τ: φ τ in the thesis (eq. 2.34), τ for phases.
+          // With the implicit elastic viscosity η_e in the matrix, its
+          // explicit twin 2 η_e D(u^l) joins s τ on the right.
+          const SymmetricTensor<2, dim> phi_tau =
+            model.stress_coupling(volume_fraction[q]) * scratch.tau[q] -
+            2 * elastic_viscosity[q] * scratch.iterate_strain_rate[q];
+
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            {
+              for (unsigned int j = 0; j < dofs_per_cell && need_matrix; ++j)
+                {
+                  cell_matrix(i, j) +=
+                    (mass_coefficient * phi_u[i] * phi_u[j] +
+                     2 * viscosity[q] * (symgrad_phi_u[i] * symgrad_phi_u[j]) -
+                     div_phi_u[i] * phi_p[j] - phi_p[i] * div_phi_u[j]) *
+                    JxW;
+                }
+              cell_rhs(i) += (rhs_vector * phi_u[i] - phi_tau * symgrad_phi_u[i]) * JxW;
+            }
+        }
+
+      // −∫ P n·v ds (Type = pressure; outflow has P = 0).
+      FEFaceValues<dim> &fe_face_values = scratch.fe_face_values;
+      for (const auto &face : cell->face_iterators())
+        if (face->at_boundary() &&
+            boundary_conditions.boundary(face->boundary_id()).type ==
+              BoundaryConditions<dim>::Type::pressure)
+          {
+            const ParsedExpression<dim> &pressure =
+              boundary_conditions.boundary(face->boundary_id()).pressure;
+            fe_face_values.reinit(cell, face);
+            for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+              {
+                const double traction =
+                  pressure.value(fe_face_values.quadrature_point(q), coefficients.time) *
+                  fe_face_values.JxW(q);
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  cell_rhs(i) -= traction * (fe_face_values[velocities].value(i, q) *
+                                             fe_face_values.normal_vector(q));
+              }
+          }
+
+      if (assemble_matrix)
+        linear_solver->add_cell_preconditioner(fe_values, data);
+    };
+
+    // In the order of the cells, whatever the threads: the sums are those
+    // of one thread.
+    const auto copy_cell = [&](const AssemblyCopy<dim> &copy) {
+      if (assemble_matrix)
+        linear_solver->add_cell_matrix(copy.cell, constraints);
+      constraints.distribute_local_to_global(copy.rhs,
+                                             copy.cell.dof_indices,
+                                             system_rhs,
+                                             copy.cell.matrix);
+    };
+
+    const auto &stress_fe = elastic_stress.dof_handler().get_fe();
+    AssemblyScratch<dim> scratch(Geometry<dim>::mapping(triangulation),
+                                 fe,
+                                 coefficients.volume_fraction_dof_handler->get_fe(),
+                                 stress_fe,
+                                 quadrature,
+                                 face_quadrature);
+    AssemblyCopy<dim> copy(dofs_per_cell, n_q_points);
+    // Workers reading the Stokes block vectors themselves (u^l for the
+    // implicit η_e twin, u^n without feet) gave wrong values on concurrent
+    // threads (channel_startup_stiff.threads=2 diverged) and hung under a
+    // lock: those assemblies run on one thread.
+    if (implicit_elastic || !use_feet)
+      for (auto it = owned_cells.cbegin(); it != owned_cells.cend(); ++it)
+        {
+          assemble_cell(it, scratch, copy);
+          copy_cell(copy);
+        }
+    else
+      WorkStream::run(owned_cells.cbegin(), owned_cells.cend(), assemble_cell, copy_cell, scratch, copy);
 
     if (assemble_matrix)
       {

@@ -302,6 +302,9 @@ namespace viscofilm
       void
       start_matrix() override;
       void
+      add_cell_preconditioner(const FEValues<dim> &   fe_values,
+                              StokesCellMatrix<dim> &cell) const override;
+      void
       add_cell_matrix(const StokesCellMatrix<dim> &    cell,
                       const AffineConstraints<double> &constraints) override;
       void
@@ -465,15 +468,15 @@ namespace viscofilm
 
     template <int dim>
     void
-    BlockPreconditioned<dim>::add_cell_matrix(const StokesCellMatrix<dim> & cell,
-                                         const AffineConstraints<double> &constraints)
+    BlockPreconditioned<dim>::add_cell_preconditioner(const FEValues<dim> &    fe_values,
+                                                      StokesCellMatrix<dim> &cell) const
     {
-      const FEValues<dim> &            fe_values = cell.fe_values;
       const FEValuesExtractors::Scalar pressure(dim);
       const unsigned int               dofs_per_cell = cell.dof_indices.size();
 
       // (1/η) M_p, the Schur complement's stand-in.
-      FullMatrix<double>  cell_mass(dofs_per_cell, dofs_per_cell);
+      FullMatrix<double> &cell_mass = cell.preconditioner_matrix;
+      cell_mass.reinit(dofs_per_cell, dofs_per_cell);
       std::vector<double> phi_p(dofs_per_cell);
       for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
         {
@@ -483,8 +486,18 @@ namespace viscofilm
             for (unsigned int j = 0; j < dofs_per_cell; ++j)
               cell_mass(i, j) += phi_p[i] * phi_p[j] / cell.viscosity[q] * fe_values.JxW(q);
         }
+    }
+
+
+    template <int dim>
+    void
+    BlockPreconditioned<dim>::add_cell_matrix(const StokesCellMatrix<dim> & cell,
+                                         const AffineConstraints<double> &constraints)
+    {
       constraints.distribute_local_to_global(cell.matrix, cell.dof_indices, system_matrix);
-      constraints.distribute_local_to_global(cell_mass, cell.dof_indices, preconditioner_matrix);
+      constraints.distribute_local_to_global(cell.preconditioner_matrix,
+                                             cell.dof_indices,
+                                             preconditioner_matrix);
 
       if (parameters.amg_matrix != AMGMatrix::q2)
         {
@@ -493,22 +506,22 @@ namespace viscofilm
              cell.volume_fraction_cell,
              std::accumulate(cell.elastic_viscosity.begin(), cell.elastic_viscosity.end(), 0.0) /
                cell.elastic_viscosity.size()});
-          volume_fraction   = &cell.volume_fraction;
+          volume_fraction   = cell.volume_fraction;
           mass_coefficient  = cell.mass_coefficient;
           this->constraints = &constraints;
         }
 
       // η at the quadrature points, for the AMG's rebuild criterion (Reuse).
       if (parameters.reuse_preconditioner)
-        for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
+        for (unsigned int q = 0; q < cell.JxW.size(); ++q)
           {
             if (velocity_amg && viscosity_now.size() < viscosity_at_build.size())
               {
                 change_integrals[0] +=
                   std::abs(std::log(cell.viscosity[q] /
                                     viscosity_at_build[viscosity_now.size()])) *
-                  fe_values.JxW(q);
-                change_integrals[1] += fe_values.JxW(q);
+                  cell.JxW[q];
+                change_integrals[1] += cell.JxW[q];
               }
             viscosity_now.push_back(cell.viscosity[q]);
           }

@@ -267,7 +267,6 @@ namespace viscofilm
             }
         }
 
-    quadrature_values = std::make_unique<FEValues<dim>>(fe, stokes_quadrature, update_values);
     if (parameters.wall_shear)
       find_wall_normals();
   }
@@ -799,21 +798,6 @@ namespace viscofilm
       }
     distributed.compress(VectorOperation::insert);
     return Utilities::MPI::sum(repairs, triangulation.get_communicator());
-  }
-
-
-  template <int dim>
-  void
-  ElasticStress<dim>::stress_at_quadrature_points(
-    const typename DoFHandler<dim>::active_cell_iterator &cell,
-    const std::vector<double> &                volume_fraction,
-    std::vector<SymmetricTensor<2, dim>> &       tau) const
-  {
-    quadrature_values->reinit(cell_of(dofs, cell));
-    std::vector<Vector<double>> c(tau.size(), Vector<double>(n_symmetric_components<dim>));
-    quadrature_values->get_function_values(current_solution, c);
-    for (unsigned int q = 0; q < tau.size(); ++q)
-      tau[q] = stress_of(c[q], volume_fraction[q]);
   }
 
 

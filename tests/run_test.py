@@ -13,7 +13,8 @@ Modes
                run's last step (every probe). --differences: no closed
                form; the error of run i is the largest difference between
                runs i and i+1 (Richardson: its rate is the scheme's order).
-  error        run FILE.prm (or the --args command line), expect a non-zero
+  error        run FILE.prm (after the --args options, or the --args command
+               line alone), expect a non-zero
                exit status, the message in --reference on stderr, and no
                output directory.
   restart      run FILE.prm (which sets Checkpointing/Interval) to its end, and
@@ -260,7 +261,7 @@ def mode_convergence(opts, workdir):
 def mode_error(opts, workdir):
     if opts.prm:
         shutil.copy(opts.prm, workdir)
-        args = [os.path.basename(opts.prm)]
+        args = opts.args.split() + [os.path.basename(opts.prm)]
         directory = output_directory(workdir, opts.prm)
     else:
         args = opts.args.split()

@@ -7,6 +7,7 @@
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
+#include <deal.II/base/thread_management.h>
 
 #include <deal.II/lac/vector.h>
 
@@ -100,8 +101,11 @@ namespace viscofilm
   private:
     const unsigned int                 n_components;
     std::string                        expression;
-    /// Its time is the evaluation's, set by value() and vector_value().
+    /// Its time is the evaluation's, set by value() and vector_value()
+    /// under @p time_lock: threads of one assembly (WorkStream) evaluate the
+    /// same expression, and deal.II's parser keeps one time for all.
     std::unique_ptr<FunctionParser<dim>> parser;
+    mutable Threads::Mutex               time_lock;
   };
 
 

@@ -35,6 +35,8 @@ namespace viscofilm
 
   template <int dim>
   class StokesLinearSolver;
+  template <int dim>
+  class ElasticStress;
 
   /// The Stokes solve of a time step: its dofs and solutions, the assembly
   /// (stokes_assembly.cc), a linear-solver strategy per Method
@@ -121,14 +123,6 @@ namespace viscofilm
       double rebuild_iteration_growth = 1.5;
     };
 
-    /// τ at the quadrature points of a cell given φ there, for the elastic
-    /// stress term −(s(φ) τ, ∇v) on the right-hand side. An empty hook
-    /// means τ = 0.
-    using ElasticStress = std::function<void(
-      const typename DoFHandler<dim>::active_cell_iterator &cell,
-      const std::vector<double> &                volume_fraction,
-      std::vector<SymmetricTensor<2, dim>> &       tau)>;
-
     /// What the momentum equation needs besides the unknowns.
     struct Coefficients
     {
@@ -137,7 +131,8 @@ namespace viscofilm
       const DoFHandler<dim> *           volume_fraction_dof_handler;
       const TrilinosWrappers::MPI::Vector *volume_fraction;
       const ParsedExpression<dim> *     body_force; // at time
-      ElasticStress                        elastic_stress;
+      /// τ for the term −(s(φ) τ, ∇v) on the right-hand side.
+      const ElasticStress<dim> *elastic_stress;
     };
 
     /// @p order: Time stepping/Order (2: BDF2 for Res ∂u/∂t, and u^{n-1}
@@ -176,7 +171,10 @@ namespace viscofilm
     TrilinosWrappers::MPI::BlockVector
     extrapolated_solution(const double offset) const;
 
-    /// Assemble the right-hand side (and the matrix if invalidated).
+    /// Assemble the right-hand side (and the matrix if invalidated): a
+    /// WorkStream over the owned cells, on MultithreadInfo::n_threads()
+    /// threads (viscofilm --threads); the same sums in the same order on any
+    /// number of threads.
     void
     assemble(const Coefficients &coefficients);
 

@@ -23,24 +23,28 @@ namespace viscofilm
 {
   using namespace dealii;
 
-  /// One cell's part of the Stokes matrix, as the assembly computed it.
+  /// One cell's part of the Stokes matrix, as the assembly computed it: the
+  /// copy data of its WorkStream, filled on a worker thread and handed to
+  /// the strategy's add_cell_matrix() on one thread, in the order of the cells.
   template <int dim>
   struct StokesCellMatrix
   {
-    const typename DoFHandler<dim>::active_cell_iterator &cell;
-    /// The Q2–Q1 (or P1disc) values, gradients and JxW on @p cell.
-    const FEValues<dim> &fe_values;
-    /// η at the quadrature points, the implicit elastic viscosity included,
-    /// and that elastic part alone (zero without it).
-    const std::vector<double> &viscosity;
-    const std::vector<double> &elastic_viscosity;
-    /// Res/k (times the BDF2 factor): the coefficient of (u, v).
-    double mass_coefficient;
+    typename DoFHandler<dim>::active_cell_iterator cell;
     /// φ on the same cell, for matrices at other quadrature points.
-    const typename DoFHandler<dim>::active_cell_iterator &volume_fraction_cell;
-    const TrilinosWrappers::MPI::Vector &         volume_fraction;
-    const std::vector<types::global_dof_index> &  dof_indices;
-    const FullMatrix<double> &                    matrix;
+    typename DoFHandler<dim>::active_cell_iterator volume_fraction_cell;
+    const TrilinosWrappers::MPI::Vector *          volume_fraction = nullptr;
+    /// JxW at the quadrature points; η there, the implicit elastic viscosity
+    /// included, and that elastic part alone (zero without it).
+    std::vector<double> JxW;
+    std::vector<double> viscosity;
+    std::vector<double> elastic_viscosity;
+    /// Res/k (times the BDF2 factor): the coefficient of (u, v).
+    double                               mass_coefficient = 0;
+    std::vector<types::global_dof_index> dof_indices;
+    FullMatrix<double>                   matrix;
+    /// The strategy's own cell matrix, from add_cell_preconditioner() on the
+    /// worker thread (the block preconditioner's (1/η) M_p); empty otherwise.
+    FullMatrix<double> preconditioner_matrix;
   };
 
 
@@ -70,6 +74,14 @@ namespace viscofilm
     /// A new matrix: zero, add every owned cell, finish.
     virtual void
     start_matrix() = 0;
+    /// On an assembly thread, beside the cell matrix: the strategy's own
+    /// cell matrices from @p fe_values (Q2–Q1 or P1disc values and JxW on
+    /// cell.cell) into @p cell. Reads nothing but its arguments and the
+    /// parameters.
+    virtual void
+    add_cell_preconditioner(const FEValues<dim> &, StokesCellMatrix<dim> &) const
+    {}
+    /// On one thread, in the order of the cells: @p cell into the matrices.
     virtual void
     add_cell_matrix(const StokesCellMatrix<dim> &    cell,
                     const AffineConstraints<double> &constraints) = 0;

@@ -125,15 +125,9 @@ namespace viscofilm
     error_estimate() const;
 
 
-    /// τ at the quadrature points of @p cell (the Stokes right-hand side),
-    /// given φ there; the flow sees Model::stress_coupling(φ) τ.
-    void
-    stress_at_quadrature_points(const typename DoFHandler<dim>::active_cell_iterator &cell,
-                                const std::vector<double> &volume_fraction,
-                                std::vector<SymmetricTensor<2, dim>> &tau) const;
-
     /// τ of the conformation (its stored components, dimension.h) at a point where the volume
-    /// fraction is @p volume_fraction (Model::stress).
+    /// fraction is @p volume_fraction (Model::stress); the Stokes assembly
+    /// asks it at its quadrature points, on any thread.
     SymmetricTensor<2, dim>
     stress_of(const Vector<double> &conformation, const double volume_fraction) const;
 
@@ -256,7 +250,6 @@ namespace viscofilm
     std::vector<unsigned int>     node_of_owned_dof; // component-0 dofs only
     std::array<unsigned int, Utilities::pow(3, dim)> lexicographic_node; // [ix + 3 iy (+ 9 iz)]
 
-    std::unique_ptr<FEValues<dim>>               quadrature_values;
     std::unique_ptr<DataPostprocessor<dim>>      tau_postprocessor;
     unsigned int                               positivity_fixes = 0;
     unsigned int                               remote_feet      = 0;
