@@ -83,7 +83,9 @@ def run_case(binary, prm_text, directory, ranks, reuse=False, threads=None):
     the log. With reuse, a finished run in directory (run.log with the timer
     table) is read instead of run again ("cached": True). With threads,
     viscofilm --threads threads, and the ranks unbound (Open MPI binds each
-    rank to one core by default when there are at most two)."""
+    rank to one core by default when there are at most two) and yielding
+    while they wait: unbound ranks that poll can share one core on a loaded
+    machine (doc/performance.md, "Unbound ranks on a loaded machine")."""
     os.makedirs(directory, exist_ok=True)
     log_file = os.path.join(directory, "run.log")
     cached = reuse and os.path.exists(log_file) and "Total wallclock" in open(log_file).read()
@@ -94,7 +96,8 @@ def run_case(binary, prm_text, directory, ranks, reuse=False, threads=None):
         start = time.time()
         command = ["mpirun", "-np", str(ranks)]
         if threads is not None:
-            command += ["--bind-to", "none", binary, "--threads", str(threads)]
+            command += ["--bind-to", "none", "--mca", "mpi_yield_when_idle", "1",
+                        binary, "--threads", str(threads)]
         else:
             command += [binary]
         result = subprocess.run(command + [prm],

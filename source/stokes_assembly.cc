@@ -341,25 +341,20 @@ namespace viscofilm
     };
 
     const auto &stress_fe = elastic_stress.dof_handler().get_fe();
-    AssemblyScratch<dim> scratch(Geometry<dim>::mapping(triangulation),
-                                 fe,
-                                 coefficients.volume_fraction_dof_handler->get_fe(),
-                                 stress_fe,
-                                 quadrature,
-                                 face_quadrature);
-    AssemblyCopy<dim> copy(dofs_per_cell, n_q_points);
-    // Workers reading the Stokes block vectors themselves (u^l for the
-    // implicit η_e twin, u^n without feet) gave wrong values on concurrent
-    // threads (channel_startup_stiff.threads=2 diverged) and hung under a
-    // lock: those assemblies run on one thread.
-    if (implicit_elastic || !use_feet)
-      for (auto it = owned_cells.cbegin(); it != owned_cells.cend(); ++it)
-        {
-          assemble_cell(it, scratch, copy);
-          copy_cell(copy);
-        }
-    else
-      WorkStream::run(owned_cells.cbegin(), owned_cells.cend(), assemble_cell, copy_cell, scratch, copy);
+    // Every worker reads the same const objects (the Stokes, φ and c
+    // vectors, the constraints, the model) and writes only its scratch, its
+    // copy and its cells' entries of the η_e cache.
+    WorkStream::run(owned_cells.cbegin(),
+                    owned_cells.cend(),
+                    assemble_cell,
+                    copy_cell,
+                    AssemblyScratch<dim>(Geometry<dim>::mapping(triangulation),
+                                         fe,
+                                         coefficients.volume_fraction_dof_handler->get_fe(),
+                                         stress_fe,
+                                         quadrature,
+                                         face_quadrature),
+                    AssemblyCopy<dim>(dofs_per_cell, n_q_points));
 
     if (assemble_matrix)
       {
