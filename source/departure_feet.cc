@@ -468,11 +468,16 @@ namespace viscofilm
     unsigned int &                                                n_left_domain)
   {
     // Sub-steps h with h|∇u| ≤ 1/2 for the largest ∇u the Newton iterates
-    // saw; one count on all ranks, whose evaluations are collective.
+    // saw; one count on all ranks, whose evaluations are collective. At
+    // most max_substeps: iterates that ran far off can see a ∇u that is not
+    // on the characteristic (in the pillar example's breakdown one step's
+    // sub-steps ran for minutes before this cap).
+    constexpr unsigned int max_substeps = 64;
     unsigned int n_substeps = 0;
     for (const unsigned int i : unsolved)
       n_substeps = std::max(n_substeps, static_cast<unsigned int>(std::ceil(2 * time_step * max_gradient[i])));
-    n_substeps = Utilities::MPI::max(n_substeps, triangulation.get_communicator());
+    n_substeps = std::min(Utilities::MPI::max(n_substeps, triangulation.get_communicator()),
+                          max_substeps);
     const double h = time_step / std::max(n_substeps, 1u);
     for (const unsigned int i : unsolved)
       feet[i] = points[i];

@@ -230,8 +230,8 @@ namespace viscofilm
 
     /// The feet of the points @p unsolved (indices into @p points) by
     /// explicit midpoint (RK2) sub-steps along the characteristic, as many
-    /// as h |∇u| ≤ 1/2 needs for the largest |∇u| in @p max_gradient; cut
-    /// at the boundary like the Newton iterates. Collective.
+    /// as h |∇u| ≤ 1/2 needs for the largest |∇u| in @p max_gradient (at
+    /// most 64); cut at the boundary like the Newton iterates. Collective.
     void
     trace_by_substeps(std::vector<unsigned int>                                     unsolved,
                       const std::vector<double> &                                   max_gradient,
