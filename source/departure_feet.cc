@@ -338,7 +338,9 @@ namespace viscofilm
                       "20",
                       Patterns::Integer(1, 1000),
                       "A foot not found within this many Newton iterations "
-                      "stops the run with the point and its residual.");
+                      "(each with a line search on the residual) is traced "
+                      "by explicit midpoint sub-steps instead (statistics.csv: "
+                      "feet_substepped).");
     prm.declare_entry("Maximum walk steps",
                       "64",
                       Patterns::Integer(1),
@@ -406,6 +408,124 @@ namespace viscofilm
 
 
   template <int dim>
+  bool
+  DepartureFeet<dim>::cut_at_boundary(
+    const typename Triangulation<dim>::active_cell_iterator &cell,
+    const Point<dim> &                                       x,
+    const double                                             tolerance,
+    Point<dim> &                                             foot,
+    typename PointEvaluator<dim>::Trace &                    cut) const
+  {
+    // Does the characteristic enter through the boundary?
+    const typename PointEvaluator<dim>::Trace trace = evaluator.trace(cell, x, foot);
+    if (!trace.found || trace.cut_face == numbers::invalid_unsigned_int ||
+        trace.point.distance(foot) <= tolerance)
+      return false;
+    foot = trace.point;
+    cut  = trace;
+    return true;
+  }
+
+
+  template <int dim>
+  bool
+  DepartureFeet<dim>::enters(const typename PointEvaluator<dim>::Trace &cut,
+                             const DoFHandler<dim> &                    stokes_dofs,
+                             const TrilinosWrappers::MPI::BlockVector & stokes_solution,
+                             const double                               max_speed) const
+  {
+    FEPointEvaluation<dim, dim> velocity(Geometry<dim>::mapping(triangulation),
+                                         stokes_dofs.get_fe(),
+                                         update_values | update_gradients,
+                                         0);
+    std::vector<double> dof_values(stokes_dofs.get_fe().n_dofs_per_cell());
+    cell_of(stokes_dofs, cut.cell)->get_dof_values(stokes_solution, dof_values.begin(), dof_values.end());
+    velocity.reinit(cut.cell, make_array_view(&cut.unit_point, &cut.unit_point + 1));
+    velocity.evaluate(dof_values, EvaluationFlags::values);
+    // Outward normal of face f: ∓∇ξ_d, d = f/2, a row of J^{-1}.
+    const unsigned int f = cut.cut_face;
+    Tensor<1, dim>     normal;
+    for (unsigned int e = 0; e < dim; ++e)
+      normal[e] = velocity.inverse_jacobian(0)[f / 2][e];
+    normal *= (f % 2 == 0 ? -1. : 1.) / normal.norm();
+    return velocity.get_value(0) * normal < -inflow_threshold * max_speed;
+  }
+
+
+  template <int dim>
+  void
+  DepartureFeet<dim>::trace_by_substeps(
+    std::vector<unsigned int>                                     unsolved,
+    const std::vector<double> &                                   max_gradient,
+    const std::vector<Point<dim>> &                               points,
+    const std::vector<typename Triangulation<dim>::active_cell_iterator> &cells,
+    const DoFHandler<dim> &                                       stokes_dofs,
+    const TrilinosWrappers::MPI::BlockVector &                    stokes_solution,
+    const double                                                  time_step,
+    const double                                                  tolerance,
+    std::vector<Point<dim>> &                                     feet,
+    std::vector<typename PointEvaluator<dim>::Trace> &            cuts,
+    unsigned int &                                                n_left_domain)
+  {
+    // Sub-steps h with h|∇u| ≤ 1/2 for the largest ∇u the Newton iterates
+    // saw; one count on all ranks, whose evaluations are collective. At
+    // most max_substeps: iterates that ran far off can see a ∇u that is not
+    // on the characteristic (in the pillar example's breakdown one step's
+    // sub-steps ran for minutes before this cap).
+    constexpr unsigned int max_substeps = 64;
+    unsigned int n_substeps = 0;
+    for (const unsigned int i : unsolved)
+      n_substeps = std::max(n_substeps, static_cast<unsigned int>(std::ceil(2 * time_step * max_gradient[i])));
+    n_substeps = std::min(Utilities::MPI::max(n_substeps, triangulation.get_communicator()),
+                          max_substeps);
+    const double h = time_step / std::max(n_substeps, 1u);
+    for (const unsigned int i : unsolved)
+      feet[i] = points[i];
+    // Each point is reached along the segment from its node, like the
+    // Newton iterates: wrapped across periodic faces, cut at the boundary.
+    std::vector<Tensor<1, dim>>                                    half_step;
+    std::vector<Point<dim>>                                        origins, targets;
+    std::vector<typename Triangulation<dim>::active_cell_iterator> hints;
+    for (unsigned int evaluation = 0; evaluation < 2 * n_substeps; ++evaluation)
+      {
+        const bool midpoint = evaluation % 2 == 1;
+        origins.resize(unsolved.size());
+        targets.resize(unsolved.size());
+        hints.resize(unsolved.size());
+        for (unsigned int j = 0; j < unsolved.size(); ++j)
+          {
+            origins[j] = points[unsolved[j]];
+            hints[j]   = cells[unsolved[j]];
+            targets[j] = midpoint ? feet[unsolved[j]] - 0.5 * h * half_step[j] : feet[unsolved[j]];
+          }
+        evaluator.reinit(origins, targets, hints);
+        const auto values = evaluate_velocity(evaluator, stokes_dofs, stokes_solution);
+        half_step.resize(unsolved.size());
+        std::vector<unsigned int> still_unsolved;
+        for (unsigned int j = 0; j < unsolved.size(); ++j)
+          {
+            Tensor<1, dim> v;
+            for (unsigned int d = 0; d < dim; ++d)
+              v[d] = values[j][d];
+            if (!midpoint)
+              {
+                half_step[j] = v;
+                continue;
+              }
+            const unsigned int i = unsolved[j];
+            feet[i] -= h * v;
+            if (cut_at_boundary(cells[i], points[i], tolerance, feet[i], cuts[i]))
+              ++n_left_domain;
+            else
+              still_unsolved.push_back(i);
+          }
+        if (midpoint)
+          unsolved.swap(still_unsolved);
+      }
+  }
+
+
+  template <int dim>
   std::vector<Point<dim>>
   DepartureFeet<dim>::compute(
     const std::vector<Point<dim>> &                              points,
@@ -427,26 +547,34 @@ namespace viscofilm
     std::vector<unsigned int>                           active(points.size());
     for (unsigned int i = 0; i < points.size(); ++i)
       active[i] = i;
+    // Newton with a backtracking line search on |G|: y = accepted +
+    // length · step. Where k|∇u|/2 is O(1) and ∇u jumps between cells, full
+    // steps cycle or run away; a trial that does not decrease |G| is halved
+    // toward the last accepted iterate, and evaluated in the next round
+    // with the other points. A full step that decreases |G| is accepted:
+    // where undamped Newton converges monotonically nothing changes.
+    std::vector<Point<dim>>     accepted(points);
+    std::vector<double>         accepted_residual(points.size(), std::numeric_limits<double>::max());
+    std::vector<Tensor<1, dim>> step(points.size());
+    std::vector<double>         length(points.size(), 1.);
+    std::vector<unsigned int>   n_steps(points.size(), 0);
+    // A trial cut at the boundary becomes the foot only if |G| decreases
+    // there too and the flow enters there: only then does the
+    // characteristic come in through the boundary. An iterate that ran
+    // away through a wall or an outflow is halved instead.
+    std::vector<bool> cut_pending(points.size(), false);
+    // The shortest trial step: a point whose |G| does not decrease along
+    // its Newton direction even this close is stuck.
+    constexpr double min_length = 1. / 1024;
+    // Points Newton did not solve, and the largest |∇u| their iterates saw.
+    std::vector<unsigned int> unsolved;
+    std::vector<double>       max_gradient(points.size(), 0.);
 
-    unsigned int iteration     = 0;
+    unsigned int iteration     = 0; // rounds: Newton steps and halvings
     unsigned int n_left_domain = 0;
     double       max_speed     = 0; // at the points (the first midpoints)
     while (Utilities::MPI::max(static_cast<unsigned int>(active.size()), comm) > 0)
       {
-        AssertThrow(
-          iteration < parameters.max_newton_iterations,
-          ExcMessage([&]() {
-            std::ostringstream message;
-            message << "the departure foot of " << active.size()
-                    << " point(s) on this rank was not found in "
-                    << parameters.max_newton_iterations
-                    << " Newton iterations (Departure feet/Maximum Newton "
-                       "iterations)";
-            if (!active.empty())
-              message << ", e.g. of (" << points[active[0]] << "), last iterate ("
-                      << feet[active[0]] << ")";
-            return message.str();
-          }()));
         ++iteration;
 
         // Midpoints along the segment from x's own cell: cut at the boundary
@@ -462,13 +590,16 @@ namespace viscofilm
         evaluator.reinit(origins, midpoints, hints);
         const auto values = evaluate_velocity(evaluator, stokes_dofs, stokes_solution);
         if (iteration == 1)
-          for (const auto &v : values)
-            {
-              double square = 0;
-              for (unsigned int d = 0; d < dim; ++d)
-                square += v[d] * v[d];
-              max_speed = std::max(max_speed, std::sqrt(square));
-            }
+          {
+            for (const auto &v : values)
+              {
+                double square = 0;
+                for (unsigned int d = 0; d < dim; ++d)
+                  square += v[d] * v[d];
+                max_speed = std::max(max_speed, std::sqrt(square));
+              }
+            max_speed = Utilities::MPI::max(max_speed, comm);
+          }
 
         std::vector<unsigned int> still_active;
         for (unsigned int j = 0; j < active.size(); ++j)
@@ -477,29 +608,55 @@ namespace viscofilm
             const auto &       v = values[j];
             Tensor<1, dim>     G = feet[i] - points[i];
             Tensor<2, dim>     jacobian; // ∇G = I + (k/2) ∇u
+            double             gradient_square = 0; // |∇u|²
             for (unsigned int d = 0; d < dim; ++d)
               {
                 G[d] += time_step * v[d];
                 for (unsigned int e = 0; e < dim; ++e)
-                  jacobian[d][e] = (d == e) + 0.5 * time_step * v[dim + dim * d + e];
+                  {
+                    jacobian[d][e] = (d == e) + 0.5 * time_step * v[dim + dim * d + e];
+                    gradient_square += v[dim + dim * d + e] * v[dim + dim * d + e];
+                  }
               }
-            if (G.norm() <= tolerance)
-              continue;
-            feet[i] = feet[i] - invert(jacobian) * G;
-            // Does the characteristic enter through the boundary?
-            const typename PointEvaluator<dim>::Trace cut = evaluator.trace(cells[i], points[i], feet[i]);
-            if (cut.found && cut.cut_face != numbers::invalid_unsigned_int &&
-                cut.point.distance(feet[i]) > tolerance)
+            const double residual = G.norm();
+            max_gradient[i] = std::max(max_gradient[i], std::sqrt(gradient_square));
+            if (cut_pending[i])
               {
-                feet[i] = cut.point;
-                cuts[i] = cut;
-                ++n_left_domain;
+                if ((residual < accepted_residual[i] || residual <= tolerance) &&
+                    enters(cuts[i], stokes_dofs, stokes_solution, max_speed))
+                  {
+                    ++n_left_domain;
+                    continue;
+                  }
+                cut_pending[i] = false;
+                cuts[i]        = {};
+                length[i] /= 2;
+              }
+            else if (residual <= tolerance)
+              continue;
+            else if (residual < accepted_residual[i])
+              {
+                accepted[i]          = feet[i];
+                accepted_residual[i] = residual;
+                step[i]              = -(invert(jacobian) * G);
+                length[i]            = 1;
+                ++n_steps[i];
               }
             else
-              still_active.push_back(i);
+              length[i] /= 2;
+            if (n_steps[i] > parameters.max_newton_iterations || length[i] < min_length)
+              {
+                unsolved.push_back(i);
+                continue;
+              }
+            feet[i]        = accepted[i] + length[i] * step[i];
+            cut_pending[i] = cut_at_boundary(cells[i], points[i], tolerance, feet[i], cuts[i]);
+            still_active.push_back(i);
           }
         active.swap(still_active);
       }
+    trace_by_substeps(unsolved, max_gradient, points, cells, stokes_dofs, stokes_solution,
+                      time_step, tolerance, feet, cuts, n_left_domain);
 
     // Walk to each foot from its point's own cell: a foot on that cell's
     // boundary (a stagnant node's) takes that cell's values (upwind).
@@ -508,28 +665,10 @@ namespace viscofilm
 
     // Inflow where u·n < 0 at the cut, relative to the velocity scale as
     // VolumeFraction's inflow faces (inflow_threshold).
-    max_speed = Utilities::MPI::max(max_speed, comm);
     inflow.assign(points.size(), numbers::invalid_boundary_id);
-    FEPointEvaluation<dim, dim> velocity(Geometry<dim>::mapping(triangulation),
-                                         stokes_dofs.get_fe(),
-                                         update_values | update_gradients,
-                                         0);
-    std::vector<double> dof_values(stokes_dofs.get_fe().n_dofs_per_cell());
     for (unsigned int i = 0; i < points.size(); ++i)
-      if (cuts[i].found)
-        {
-          cell_of(stokes_dofs, cuts[i].cell)->get_dof_values(stokes_solution, dof_values.begin(), dof_values.end());
-          velocity.reinit(cuts[i].cell, make_array_view(&cuts[i].unit_point, &cuts[i].unit_point + 1));
-          velocity.evaluate(dof_values, EvaluationFlags::values);
-          // Outward normal of face f: ∓∇ξ_d, d = f/2, a row of J^{-1}.
-          const unsigned int f = cuts[i].cut_face;
-          Tensor<1, dim>     normal;
-          for (unsigned int e = 0; e < dim; ++e)
-            normal[e] = velocity.inverse_jacobian(0)[f / 2][e];
-          normal *= (f % 2 == 0 ? -1. : 1.) / normal.norm();
-          if (velocity.get_value(0) * normal < -inflow_threshold * max_speed)
-            inflow[i] = cuts[i].cell->face(f)->boundary_id();
-        }
+      if (cuts[i].found && enters(cuts[i], stokes_dofs, stokes_solution, max_speed))
+        inflow[i] = cuts[i].cell->face(cuts[i].cut_face)->boundary_id();
 
     unsigned int n_left_cell = 0;
     for (unsigned int i = 0; i < points.size(); ++i)
@@ -540,6 +679,7 @@ namespace viscofilm
       std::max(accumulated.max_newton_iterations, iteration);
     accumulated.n_left_cell += Utilities::MPI::sum(n_left_cell, comm);
     accumulated.n_left_domain += Utilities::MPI::sum(n_left_domain, comm);
+    accumulated.n_substepped += Utilities::MPI::sum(static_cast<unsigned int>(unsolved.size()), comm);
     return evaluator.located_points();
   }
 

@@ -512,6 +512,7 @@ namespace viscofilm
     statistics.set("feet_newton_iterations", feet.max_newton_iterations);
     statistics.set("feet_left_cell", feet.n_left_cell);
     statistics.set("feet_left_domain", feet.n_left_domain);
+    statistics.set("feet_substepped", feet.n_substepped);
     statistics.set("feet_remote", stress.n_remote_feet());
     statistics.set("feet_positivity_fixes", stress.n_positivity_fixes());
     statistics.set("conformation_repairs", stress.n_positivity_repairs());

@@ -161,6 +161,7 @@ namespace viscofilm
       unsigned int max_newton_iterations = 0;
       unsigned int n_left_cell           = 0; // foot outside the cells around x
       unsigned int n_left_domain         = 0; // foot cut at the boundary
+      unsigned int n_substepped          = 0; // traced by sub-steps, not Newton
     };
 
     DepartureFeet(const Parameters &                             parameters,
@@ -169,7 +170,10 @@ namespace viscofilm
     /**
      * The feet y of the points x: y = x − k u((x + y)/2), the implicit
      * midpoint rule along the characteristic, solved by Newton's method
-     * (∇G = I + (k/2) ∇u) from y = x. @p cells are the cells the points
+     * (∇G = I + (k/2) ∇u) from y = x with a backtracking line search on
+     * |G|; where it fails (no root, or stuck where ∇u jumps between cells)
+     * within `Maximum Newton iterations`, the foot is traced by explicit
+     * midpoint sub-steps (trace_by_substeps()). @p cells are the cells the points
      * came from: a foot in (or on the boundary of) its point's cell is
      * evaluated there, upwind (and the feet that left them are counted). u is the velocity part
      * of @p stokes_solution (ghosted) on @p stokes_dofs. A characteristic
@@ -206,6 +210,41 @@ namespace viscofilm
     reset_statistics();
 
   private:
+    /// Where the segment from @p x in @p cell to @p foot leaves the mesh by
+    /// more than @p tolerance: @p foot becomes the crossing, @p cut its
+    /// trace, and true.
+    bool
+    cut_at_boundary(const typename Triangulation<dim>::active_cell_iterator &cell,
+                    const Point<dim> &                                       x,
+                    double                                                   tolerance,
+                    Point<dim> &                                             foot,
+                    typename PointEvaluator<dim>::Trace &                    cut) const;
+
+    /// Does the flow enter the domain at @p cut (u·n < −inflow_threshold
+    /// @p max_speed)?
+    bool
+    enters(const typename PointEvaluator<dim>::Trace &cut,
+           const DoFHandler<dim> &                    stokes_dofs,
+           const TrilinosWrappers::MPI::BlockVector & stokes_solution,
+           double                                     max_speed) const;
+
+    /// The feet of the points @p unsolved (indices into @p points) by
+    /// explicit midpoint (RK2) sub-steps along the characteristic, as many
+    /// as h |∇u| ≤ 1/2 needs for the largest |∇u| in @p max_gradient (at
+    /// most 64); cut at the boundary like the Newton iterates. Collective.
+    void
+    trace_by_substeps(std::vector<unsigned int>                                     unsolved,
+                      const std::vector<double> &                                   max_gradient,
+                      const std::vector<Point<dim>> &                               points,
+                      const std::vector<typename Triangulation<dim>::active_cell_iterator> &cells,
+                      const DoFHandler<dim> &                                       stokes_dofs,
+                      const TrilinosWrappers::MPI::BlockVector &                    stokes_solution,
+                      double                                                        time_step,
+                      double                                                        tolerance,
+                      std::vector<Point<dim>> &                                     feet,
+                      std::vector<typename PointEvaluator<dim>::Trace> &            cuts,
+                      unsigned int &                                                n_left_domain);
+
     /// Is @p y in a cell sharing the point @p x of @p cell?
     bool
     inside_patch(const typename Triangulation<dim>::active_cell_iterator &cell,
