@@ -432,12 +432,9 @@ namespace viscofilm
   DepartureFeet<dim>::enters(const typename PointEvaluator<dim>::Trace &cut,
                              const DoFHandler<dim> &                    stokes_dofs,
                              const TrilinosWrappers::MPI::BlockVector & stokes_solution,
-                             const double                               max_speed) const
+                             const double                               max_speed,
+                             FEPointEvaluation<dim, dim> &              velocity) const
   {
-    FEPointEvaluation<dim, dim> velocity(Geometry<dim>::mapping(triangulation),
-                                         stokes_dofs.get_fe(),
-                                         update_values | update_gradients,
-                                         0);
     std::vector<double> dof_values(stokes_dofs.get_fe().n_dofs_per_cell());
     cell_of(stokes_dofs, cut.cell)->get_dof_values(stokes_solution, dof_values.begin(), dof_values.end());
     velocity.reinit(cut.cell, make_array_view(&cut.unit_point, &cut.unit_point + 1));
@@ -573,6 +570,11 @@ namespace viscofilm
     unsigned int iteration     = 0; // rounds: Newton steps and halvings
     unsigned int n_left_domain = 0;
     double       max_speed     = 0; // at the points (the first midpoints)
+    // u at the cuts, for the inflow test (enters()): one evaluator per call.
+    FEPointEvaluation<dim, dim> velocity(Geometry<dim>::mapping(triangulation),
+                                         stokes_dofs.get_fe(),
+                                         update_values | update_gradients,
+                                         0);
     while (Utilities::MPI::max(static_cast<unsigned int>(active.size()), comm) > 0)
       {
         ++iteration;
@@ -623,7 +625,7 @@ namespace viscofilm
             if (cut_pending[i])
               {
                 if ((residual < accepted_residual[i] || residual <= tolerance) &&
-                    enters(cuts[i], stokes_dofs, stokes_solution, max_speed))
+                    enters(cuts[i], stokes_dofs, stokes_solution, max_speed, velocity))
                   {
                     ++n_left_domain;
                     continue;
@@ -667,7 +669,7 @@ namespace viscofilm
     // VolumeFraction's inflow faces (inflow_threshold).
     inflow.assign(points.size(), numbers::invalid_boundary_id);
     for (unsigned int i = 0; i < points.size(); ++i)
-      if (cuts[i].found && enters(cuts[i], stokes_dofs, stokes_solution, max_speed))
+      if (cuts[i].found && enters(cuts[i], stokes_dofs, stokes_solution, max_speed, velocity))
         inflow[i] = cuts[i].cell->face(cuts[i].cut_face)->boundary_id();
 
     unsigned int n_left_cell = 0;

@@ -15,6 +15,8 @@
 
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 
+#include <deal.II/matrix_free/fe_point_evaluation.h>
+
 #include <viscofilm/dimension.h>
 
 #include <array>
@@ -221,12 +223,14 @@ namespace viscofilm
                     typename PointEvaluator<dim>::Trace &                    cut) const;
 
     /// Does the flow enter the domain at @p cut (u·n < −inflow_threshold
-    /// @p max_speed)?
+    /// @p max_speed)? @p velocity: the caller's evaluator of u on
+    /// @p stokes_dofs, built once per compute().
     bool
     enters(const typename PointEvaluator<dim>::Trace &cut,
            const DoFHandler<dim> &                    stokes_dofs,
            const TrilinosWrappers::MPI::BlockVector & stokes_solution,
-           double                                     max_speed) const;
+           double                                     max_speed,
+           FEPointEvaluation<dim, dim> &              velocity) const;
 
     /// The feet of the points @p unsolved (indices into @p points) by
     /// explicit midpoint (RK2) sub-steps along the characteristic, as many
