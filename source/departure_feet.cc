@@ -7,7 +7,6 @@
 #include <viscofilm/dof_cell.h>
 #include <viscofilm/boundary_conditions.h>
 #include <viscofilm/departure_feet.h>
-#include <viscofilm/geometry.h>
 #include <viscofilm/input.h>
 
 #include <algorithm>
@@ -34,10 +33,20 @@ namespace viscofilm
   template <int dim>
   PointEvaluator<dim>::PointEvaluator(
     const parallel::distributed::Triangulation<dim> &triangulation,
+    const Mapping<dim> &                           mapping,
     const unsigned int                             max_walk_steps)
     : triangulation(triangulation)
+    , cell_mapping(mapping)
     , max_walk_steps(max_walk_steps)
   {}
+
+
+  template <int dim>
+  const Mapping<dim> &
+  PointEvaluator<dim>::mapping() const
+  {
+    return cell_mapping;
+  }
 
 
   namespace
@@ -46,11 +55,13 @@ namespace viscofilm
     /// bilinear map has no inverse (far from a distorted cell).
     template <int dim>
     std::optional<Point<dim>>
-    unit_point(const typename Triangulation<dim>::cell_iterator &cell, const Point<dim> &p)
+    unit_point(const Mapping<dim> &                                mapping,
+               const typename Triangulation<dim>::cell_iterator &cell,
+               const Point<dim> &                                 p)
     {
       try
         {
-          return Geometry<dim>::mapping(cell->get_triangulation()).transform_real_to_unit_cell(cell, p);
+          return mapping.transform_real_to_unit_cell(cell, p);
         }
       catch (const typename Mapping<dim>::ExcTransformationFailed &)
         {
@@ -71,7 +82,7 @@ namespace viscofilm
     Point<dim> a = from, b = to; // the segment, in the frame of cell
     for (unsigned int step = 0; step < max_walk_steps && !cell->is_artificial(); ++step)
       {
-        std::optional<Point<dim>> mapped_b = unit_point(cell, b);
+        std::optional<Point<dim>> mapped_b = unit_point(cell_mapping, cell, b);
         if (mapped_b &&
             GeometryInfo<dim>::distance_to_unit_cell(*mapped_b) < unit_tolerance)
           return {cell, *mapped_b, b, numbers::invalid_unsigned_int, true};
@@ -82,9 +93,9 @@ namespace viscofilm
         for (unsigned int halving = 0; !mapped_b && halving < 40; ++halving)
           {
             target   = a + 0.5 * (target - a);
-            mapped_b = unit_point(cell, target);
+            mapped_b = unit_point(cell_mapping, cell, target);
           }
-        const std::optional<Point<dim>> mapped_a = unit_point(cell, a);
+        const std::optional<Point<dim>> mapped_a = unit_point(cell_mapping, cell, a);
         if (!mapped_b || !mapped_a)
           break;
         if (GeometryInfo<dim>::distance_to_unit_cell(*mapped_b) < unit_tolerance)
@@ -120,7 +131,7 @@ namespace viscofilm
         unit_exit[face / 2]  = face % 2;
         unit_exit = GeometryInfo<dim>::project_to_unit_cell(unit_exit);
         const Point<dim> crossing =
-          Geometry<dim>::mapping(triangulation).transform_unit_to_real_cell(cell, unit_exit);
+          cell_mapping.transform_unit_to_real_cell(cell, unit_exit);
 
         typename Triangulation<dim>::cell_iterator next;
         if (cell->has_periodic_neighbor(face))
@@ -151,7 +162,7 @@ namespace viscofilm
             double       distance = std::numeric_limits<double>::max();
             for (unsigned int c = 0; c < next->n_children(); ++c)
               {
-                const std::optional<Point<dim>> unit = unit_point(next->child(c), a);
+                const std::optional<Point<dim>> unit = unit_point(cell_mapping, next->child(c), a);
                 const double d = unit ? GeometryInfo<dim>::distance_to_unit_cell(*unit) :
                                         std::numeric_limits<double>::max();
                 if (d < distance)
@@ -211,7 +222,7 @@ namespace viscofilm
         for (const double tolerance : {unit_tolerance, sliver_tolerance})
           {
             remote = std::make_unique<Utilities::MPI::RemotePointEvaluation<dim>>(tolerance);
-            remote->reinit(remote_locations, triangulation, Geometry<dim>::mapping(triangulation));
+            remote->reinit(remote_locations, triangulation, cell_mapping);
             if (Utilities::MPI::max(remote->all_points_found() ? 0u : 1u, comm) == 0)
               break;
           }
@@ -295,7 +306,7 @@ namespace viscofilm
                     const DoFHandler<dim> &                     stokes_dofs,
                     const TrilinosWrappers::MPI::BlockVector &stokes_solution)
   {
-    FEPointEvaluation<dim, dim> velocity(Geometry<dim>::mapping(stokes_dofs.get_triangulation()),
+    FEPointEvaluation<dim, dim> velocity(points.mapping(),
                                      stokes_dofs.get_fe(),
                                      update_values | update_gradients,
                                      0);
@@ -372,10 +383,11 @@ namespace viscofilm
   template <int dim>
   DepartureFeet<dim>::DepartureFeet(
     const Parameters &                             parameters,
-    const parallel::distributed::Triangulation<dim> &triangulation)
+    const parallel::distributed::Triangulation<dim> &triangulation,
+    const Mapping<dim> &                           mapping)
     : parameters(parameters)
     , triangulation(triangulation)
-    , evaluator(triangulation, parameters.max_walk_steps)
+    , evaluator(triangulation, mapping, parameters.max_walk_steps)
   {}
 
 
@@ -571,7 +583,7 @@ namespace viscofilm
     unsigned int n_left_domain = 0;
     double       max_speed     = 0; // at the points (the first midpoints)
     // u at the cuts, for the inflow test (enters()): one evaluator per call.
-    FEPointEvaluation<dim, dim> velocity(Geometry<dim>::mapping(triangulation),
+    FEPointEvaluation<dim, dim> velocity(evaluator.mapping(),
                                          stokes_dofs.get_fe(),
                                          update_values | update_gradients,
                                          0);

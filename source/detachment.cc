@@ -99,7 +99,7 @@ namespace viscofilm
     , volume_fraction(volume_fraction)
     , stress(stress)
     , boundary_conditions(boundary_conditions)
-    , detached(triangulation, transport, boundary_conditions, "phi_detached", false)
+    , detached(triangulation, volume_fraction.mapping(), transport, boundary_conditions, "phi_detached", false)
   {
     if (parameters.enabled && parameters.duration > 0)
       volume_fraction.carry(clock);

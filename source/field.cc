@@ -3,8 +3,9 @@
 namespace viscofilm
 {
   template <int dim, typename VectorType>
-  Field<dim, VectorType>::Field(const Triangulation<dim> &triangulation)
-    : dofs(triangulation)
+  Field<dim, VectorType>::Field(const Triangulation<dim> &triangulation, const Mapping<dim> &mapping)
+    : cell_mapping(mapping)
+    , dofs(triangulation)
     , carried{&current_solution}
     , carriers(1)
   {}
@@ -15,6 +16,14 @@ namespace viscofilm
   Field<dim, VectorType>::dof_handler() const
   {
     return dofs;
+  }
+
+
+  template <int dim, typename VectorType>
+  const Mapping<dim> &
+  Field<dim, VectorType>::mapping() const
+  {
+    return cell_mapping;
   }
 
 

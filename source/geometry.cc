@@ -1,6 +1,3 @@
-#include <deal.II/fe/mapping_q.h>
-#include <deal.II/fe/mapping_q1.h>
-
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/manifold_lib.h>
@@ -277,6 +274,20 @@ namespace viscofilm
             }
       }
 
+    // On a curved boundary the bilinear map makes each cell's edge a chord,
+    // a geometry error of O(h²) that limited the cylinder's drag to second
+    // order in h (and the stress update to first order where node
+    // positions and velocity gradients were taken with it). The quadratic
+    // map puts the edge and interior support points on the manifolds
+    // (doc/numerics.md, "The mapping").
+    curved = false;
+    for (const auto &cell : coarse.active_cell_iterators())
+      {
+        curved = curved || cell->manifold_id() != numbers::flat_manifold_id;
+        for (const auto &face : cell->face_iterators())
+          curved = curved || face->manifold_id() != numbers::flat_manifold_id;
+      }
+
     std::map<types::boundary_id, std::string> names;
     if (mesh == Mesh::gmsh)
       {
@@ -478,25 +489,10 @@ namespace viscofilm
 
 
   template <int dim>
-  const Mapping<dim> &
-  Geometry<dim>::mapping(const Triangulation<dim> &triangulation)
+  unsigned int
+  Geometry<dim>::mapping_degree() const
   {
-    // On a curved boundary the bilinear map makes each cell's edge a chord,
-    // a geometry error of O(h²) that limited the cylinder's drag to second
-    // order in h (and the stress update to first order where node
-    // positions and velocity gradients were taken with it). The quadratic
-    // map puts the edge and interior support points on the manifolds
-    // (doc/numerics.md, "The mapping").
-    static const MappingQ<dim> quadratic(2);
-    for (const auto &cell : triangulation.cell_iterators_on_level(0))
-      {
-        if (cell->manifold_id() != numbers::flat_manifold_id)
-          return quadratic;
-        for (const auto &face : cell->face_iterators())
-          if (face->manifold_id() != numbers::flat_manifold_id)
-            return quadratic;
-      }
-    return StaticMappingQ1<dim>::mapping;
+    return curved ? 2 : 1;
   }
 
 

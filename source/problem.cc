@@ -1,6 +1,8 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/utilities.h>
 
+#include <deal.II/fe/mapping_q1.h>
+
 #include <deal.II/grid/grid_tools.h>
 
 #include <viscofilm/input.h>
@@ -48,21 +50,29 @@ namespace viscofilm
     , triangulation(comm,
                     Triangulation<dim>::limit_level_difference_at_vertices,
                     parallel::distributed::Triangulation<dim>::default_setting)
+    , curved_mapping(parameters.geometry.mapping_degree() > 1 ?
+                       std::make_unique<MappingQCache<dim>>(parameters.geometry.mapping_degree()) :
+                       nullptr)
+    , mapping(curved_mapping ? static_cast<const Mapping<dim> &>(*curved_mapping) :
+                               StaticMappingQ1<dim>::mapping)
     , stokes(triangulation,
+             mapping,
              parameters.stokes_solver,
              parameters.model,
              parameters.boundary_conditions,
              parameters.time_stepping.order)
     , volume_fraction(triangulation,
+                      mapping,
                       parameters.stabilization,
                       parameters.boundary_conditions)
     , stress(triangulation,
+             mapping,
              parameters.stress,
              parameters.model,
              parameters.boundary_conditions,
              parameters.time_stepping.order,
              stokes.quadrature())
-    , departure_feet(parameters.departure_feet, triangulation)
+    , departure_feet(parameters.departure_feet, triangulation, mapping)
     , loads(parameters.detachment,
             parameters.model,
             stokes,
@@ -94,6 +104,7 @@ namespace viscofilm
     TimerOutput::Scope t(*computing_timer, "setup");
     make_coarse_grid();
     parameters.geometry.refine_initial_mesh(triangulation);
+    cache_mapping();
     check_probe_points();
   }
 
@@ -166,10 +177,21 @@ namespace viscofilm
     for (FieldBase<dim> *field : fields)
       field->prepare_for_refinement();
     triangulation.execute_coarsening_and_refinement();
+    cache_mapping();
     for (FieldBase<dim> *field : fields)
       field->finish_refinement();
     mesh_changed();
     return true;
+  }
+
+
+  template <int dim>
+  void
+  Problem<dim>::cache_mapping()
+  {
+    // Every cell of this rank's view, ghost and artificial ones included.
+    if (curved_mapping)
+      curved_mapping->initialize(MappingQ<dim>(curved_mapping->get_degree()), triangulation);
   }
 
 
@@ -215,6 +237,7 @@ namespace viscofilm
       TimerOutput::Scope t(*computing_timer, "setup");
       make_coarse_grid();
       triangulation.load(checkpoint.mesh_file());
+      cache_mapping();
     }
     setup_dofs();
     for (FieldBase<dim> *field : fields)

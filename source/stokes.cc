@@ -251,11 +251,12 @@ namespace viscofilm
   template <int dim>
   StokesSolver<dim>::StokesSolver(
     const parallel::distributed::Triangulation<dim> &triangulation,
+    const Mapping<dim> &                           mapping,
     const Parameters &                             parameters,
     const Model &                                  model,
     const BoundaryConditions<dim> &                boundary_conditions,
     const unsigned int                             order)
-    : FieldType(triangulation)
+    : FieldType(triangulation, mapping)
     , triangulation(triangulation)
     , parameters(parameters)
     , model(model)

@@ -12,7 +12,6 @@
 #include <deal.II/lac/full_matrix.h>
 
 #include <viscofilm/dof_cell.h>
-#include <viscofilm/geometry.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/stokes_linear_solver.h>
 #include <viscofilm/stress.h>
@@ -348,7 +347,7 @@ namespace viscofilm
                     owned_cells.cend(),
                     assemble_cell,
                     copy_cell,
-                    AssemblyScratch<dim>(Geometry<dim>::mapping(triangulation),
+                    AssemblyScratch<dim>(this->mapping(),
                                          fe,
                                          coefficients.volume_fraction_dof_handler->get_fe(),
                                          stress_fe,
@@ -388,7 +387,7 @@ namespace viscofilm
     previous_velocity_at_feet.clear();
     if (model.density == 0)
       return;
-    FEValues<dim> fe_values(Geometry<dim>::mapping(triangulation), fe, quadrature(), update_quadrature_points);
+    FEValues<dim> fe_values(this->mapping(), fe, quadrature(), update_quadrature_points);
     std::vector<Point<dim>>                               points;
     std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
     for (const auto &cell : dofs.active_cell_iterators())

@@ -7,7 +7,6 @@
 
 #include <deal.II/numerics/error_estimator.h>
 
-#include <viscofilm/geometry.h>
 #include <viscofilm/stokes.h>
 
 #include <cmath>
@@ -126,7 +125,7 @@ namespace viscofilm
   StokesSolver<dim>::max_cell_divergence() const
   {
     const QGauss<dim>                  quadrature(fe.degree + 1);
-    FEValues<dim>                      fe_values(Geometry<dim>::mapping(triangulation),
+    FEValues<dim>                      fe_values(this->mapping(),
                                                fe,
                                                quadrature,
                                                update_gradients | update_JxW_values);
@@ -169,7 +168,7 @@ namespace viscofilm
   {
     // ‖u − u_prev‖_L2 / ‖u‖_L2: the velocity alone, as the pressure's size
     // (which grows with the viscosity) says nothing about the flow's change.
-    FEValues<dim> fe_values(Geometry<dim>::mapping(triangulation),
+    FEValues<dim> fe_values(this->mapping(),
                             fe,
                             quadrature(),
                             update_values | update_JxW_values);

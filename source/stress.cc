@@ -9,7 +9,6 @@
 #include <deal.II/matrix_free/fe_point_evaluation.h>
 
 #include <viscofilm/dof_cell.h>
-#include <viscofilm/geometry.h>
 #include <viscofilm/input.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/stress.h>
@@ -182,12 +181,13 @@ namespace viscofilm
   template <int dim>
   ElasticStress<dim>::ElasticStress(
     const parallel::distributed::Triangulation<dim> &triangulation,
+    const Mapping<dim> &                           mapping,
     const Parameters &                             parameters,
     const Model &                                  model,
     const BoundaryConditions<dim> &                boundary_conditions,
     const unsigned int                             order,
     const Quadrature<dim> &                        stokes_quadrature)
-    : FieldType(triangulation)
+    : FieldType(triangulation, mapping)
     , triangulation(triangulation)
     , parameters(parameters)
     , model(model)
@@ -244,7 +244,6 @@ namespace viscofilm
 
     nodes.clear();
     node_of_owned_dof.assign(owned.n_elements(), numbers::invalid_unsigned_int);
-    const Mapping<dim> &                 mapping = Geometry<dim>::mapping(triangulation);
     std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -259,7 +258,7 @@ namespace viscofilm
                 continue;
               node_of_owned_dof[owned.index_within_set(dof)] = nodes.size();
               Node node;
-              node.position = mapping.transform_unit_to_real_cell(cell, unit_support[k]);
+              node.position = this->mapping().transform_unit_to_real_cell(cell, unit_support[k]);
               node.cell = cell;
               for (unsigned int c = 0; c < n_symmetric_components<dim>; ++c)
                 node.dofs[c] = cell_dofs[fe.component_to_system_index(c, k)];
@@ -279,7 +278,7 @@ namespace viscofilm
     // The outward normal of face f (normal to the unit axis f/2) at a
     // point: ±(row f/2 of the inverse Jacobian), normalised.
     const Quadrature<dim> at_nodes(fe.base_element(0).get_unit_support_points());
-    FEValues<dim>         geometry(Geometry<dim>::mapping(triangulation),
+    FEValues<dim>         geometry(this->mapping(),
                                    fe,
                                    at_nodes,
                                    update_inverse_jacobians);
@@ -383,7 +382,7 @@ namespace viscofilm
     const double       this_rank = Utilities::MPI::this_mpi_process(comm);
     const bool         guard     = parameters.positivity_safe_feet && model.relaxed_conformation() > 0;
     unsigned int       fixes     = 0;
-    FEPointEvaluation<n_symmetric_components<dim>, dim> conformation(Geometry<dim>::mapping(triangulation), fe, update_values, 0);
+    FEPointEvaluation<n_symmetric_components<dim>, dim> conformation(this->mapping(), fe, update_values, 0);
     std::vector<double>     cell_values(fe.n_dofs_per_cell());
 
     // The foot's c, and the rank that evaluated it (to count remote feet).
@@ -502,9 +501,8 @@ namespace viscofilm
     // At the feet in the layout of evaluate_velocity(): ∂u_d/∂x_e at
     // [dim + dim d + e]; φ^n at [0].
     const FiniteElement<dim> &phi_fe = volume_fraction.dof_handler().get_fe();
-    const Mapping<dim> &      mapping = Geometry<dim>::mapping(triangulation);
-    FEPointEvaluation<1, dim> phi(mapping, phi_fe, update_values);
-    FEPointEvaluation<n_symmetric_components<dim>, dim> gradient_values(mapping,
+    FEPointEvaluation<1, dim> phi(this->mapping(), phi_fe, update_values);
+    FEPointEvaluation<n_symmetric_components<dim>, dim> gradient_values(this->mapping(),
                                                                    fe,
                                                                    update_values);
     std::vector<double> phi_dofs(phi_fe.n_dofs_per_cell());
@@ -578,7 +576,7 @@ namespace viscofilm
   ElasticStress<dim>::nodal_velocity_gradient(const StokesSolver<dim> &stokes) const
   {
     const Quadrature<dim> at_nodes(fe.base_element(0).get_unit_support_points());
-    FEValues<dim> stokes_values(Geometry<dim>::mapping(triangulation),
+    FEValues<dim> stokes_values(this->mapping(),
                                 stokes.dof_handler().get_fe(),
                                 at_nodes,
                                 update_gradients);
@@ -723,7 +721,7 @@ namespace viscofilm
   {
     // ‖Δτ‖_L2 / ‖τ‖_L2 with the Frobenius norm; Δτ = G Δc, but τ's own size,
     // not c's (which includes the relaxed state), is the scale.
-    FEValues<dim> fe_values(Geometry<dim>::mapping(triangulation),
+    FEValues<dim> fe_values(this->mapping(),
                             fe,
                             stokes_quadrature,
                             update_values | update_JxW_values);

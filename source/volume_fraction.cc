@@ -15,7 +15,6 @@
 
 #include <viscofilm/dof_cell.h>
 #include <viscofilm/departure_feet.h>
-#include <viscofilm/geometry.h>
 #include <viscofilm/input.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/volume_fraction.h>
@@ -73,11 +72,12 @@ namespace viscofilm
   template <int dim>
   VolumeFraction<dim>::VolumeFraction(
     const parallel::distributed::Triangulation<dim> &triangulation,
+    const Mapping<dim> &                           mapping,
     const Parameters &                             parameters,
     const BoundaryConditions<dim> &                boundary_conditions,
     const std::string &                            name,
     const bool                                     inflow_from_boundaries)
-    : FieldType(triangulation)
+    : FieldType(triangulation, mapping)
     , parameters(parameters)
     , boundary_conditions(boundary_conditions)
     , mpi_communicator(triangulation.get_communicator())
@@ -440,7 +440,6 @@ namespace viscofilm
     std::vector<Point<dim>>                               nodes;
     std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
     std::vector<types::global_dof_index>                node_dofs, local_dofs(fe.n_dofs_per_cell());
-    const Mapping<dim> &mapping = Geometry<dim>::mapping(dofs.get_triangulation());
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -451,7 +450,7 @@ namespace viscofilm
                 !seen[owned.index_within_set(local_dofs[i])])
               {
                 seen[owned.index_within_set(local_dofs[i])] = true;
-                nodes.push_back(mapping.transform_unit_to_real_cell(cell, unit_support[i]));
+                nodes.push_back(this->mapping().transform_unit_to_real_cell(cell, unit_support[i]));
                 cells.push_back(cell);
                 node_dofs.push_back(local_dofs[i]);
               }

@@ -67,7 +67,12 @@ namespace viscofilm
     /// A walk crosses at most @p max_walk_steps cells before the point is
     /// left to the global search.
     PointEvaluator(const parallel::distributed::Triangulation<dim> &triangulation,
+                   const Mapping<dim> &                           mapping,
                    const unsigned int                             max_walk_steps);
+
+    /// The map from the reference cell the points are located with.
+    const Mapping<dim> &
+    mapping() const;
 
     /// Where the segment from a point in a cell towards a target ends.
     struct Trace
@@ -120,6 +125,7 @@ namespace viscofilm
     };
 
     const parallel::distributed::Triangulation<dim> &triangulation;
+    const Mapping<dim> &                           cell_mapping;
     const unsigned int                             max_walk_steps;
     std::vector<LocalPoint>                        local; // sorted by cell
     std::vector<unsigned int>                      remote_points;
@@ -167,7 +173,8 @@ namespace viscofilm
     };
 
     DepartureFeet(const Parameters &                             parameters,
-                  const parallel::distributed::Triangulation<dim> &triangulation);
+                  const parallel::distributed::Triangulation<dim> &triangulation,
+                  const Mapping<dim> &                           mapping);
 
     /**
      * The feet y of the points x: y = x − k u((x + y)/2), the implicit

@@ -11,6 +11,8 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
+#include <deal.II/fe/mapping.h>
+
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -80,6 +82,10 @@ namespace viscofilm
     const DoFHandler<dim> &
     dof_handler() const;
 
+    /// The map from the reference cell (Problem's, one for every field).
+    const Mapping<dim> &
+    mapping() const;
+
     /// The solution at t_{n+1} (the current iterate) with ghost values.
     const VectorType &
     solution() const;
@@ -104,7 +110,7 @@ namespace viscofilm
     restore_old() override;
 
   protected:
-    explicit Field(const Triangulation<dim> &triangulation);
+    Field(const Triangulation<dim> &triangulation, const Mapping<dim> &mapping);
 
     /// After the dofs are distributed: the partitionings, and the solution
     /// at t_{n+1} and t_n laid out on them (zero).
@@ -117,6 +123,7 @@ namespace viscofilm
     virtual void
     transferred(VectorType &distributed);
 
+    const Mapping<dim> &      cell_mapping;
     DoFHandler<dim>           dofs;
     IndexSet                  locally_relevant_dofs;
     Partitioning              owned_partitioning;

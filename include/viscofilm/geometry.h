@@ -10,8 +10,6 @@
 
 #include <deal.II/distributed/tria.h>
 
-#include <deal.II/fe/mapping.h>
-
 #include <deal.II/grid/tria.h>
 
 #include <viscofilm/dimension.h>
@@ -85,13 +83,13 @@ namespace viscofilm
     double
     initial_cell_size() const;
 
-    /// The map from the reference cell of every cell of @p triangulation,
-    /// for every field and every position (FEValues, nodes, feet, forces):
-    /// quadratic (MappingQ(2)) if the coarse mesh has a curved manifold
-    /// (the cylinder), else bilinear (MappingQ1, the channel and gmsh
-    /// meshes: their results are those of deal.II's default mapping).
-    static const Mapping<dim> &
-    mapping(const Triangulation<dim> &triangulation);
+    /// The degree of the map from the reference cell of every cell, for
+    /// every field and every position (FEValues, nodes, feet, forces): 2
+    /// if the coarse mesh has a curved manifold (the cylinder), else 1 (the
+    /// channel and gmsh meshes: MappingQ1, deal.II's default mapping).
+    /// Problem builds that map once per run (Problem::mapping).
+    unsigned int
+    mapping_degree() const;
 
     Mesh         mesh = Mesh::channel;
     /// The channel's corners; for a gmsh mesh its bounding box.
@@ -114,6 +112,7 @@ namespace viscofilm
 
     std::vector<NamedBoundary> named_boundaries;
     double                     smallest_coarse_edge = 1;
+    bool                       curved               = false; // see mapping_degree()
   };
 } // namespace viscofilm
 

@@ -9,6 +9,8 @@
 
 #include <deal.II/distributed/tria.h>
 
+#include <deal.II/fe/mapping_q_cache.h>
+
 #include <viscofilm/checkpoint.h>
 #include <viscofilm/departure_feet.h>
 #include <viscofilm/detachment.h>
@@ -76,6 +78,11 @@ namespace viscofilm
     bool
     refine_mesh(const bool                            coarsen = true,
                 const typename MeshRefinement<dim>::InitialInput *input = nullptr);
+    /// Right after the triangulation changed (made, refined, loaded), before
+    /// anything maps a cell: the curved mapping's support points. deal.II
+    /// drops them at every change, and mapping a cell without them fails.
+    void
+    cache_mapping();
     /// After any change of the mesh: caches that depend on it.
     void
     mesh_changed();
@@ -120,6 +127,12 @@ namespace viscofilm
     std::unique_ptr<TimerOutput> computing_timer;
 
     parallel::distributed::Triangulation<dim> triangulation;
+    /// On a curved mesh (Geometry::mapping_degree() 2) MappingQ(2)'s support
+    /// points computed once per mesh: MappingQ would ask the manifolds (the
+    /// transfinite one is costly) at every reinit of a cell. Null otherwise.
+    std::unique_ptr<MappingQCache<dim>> curved_mapping;
+    /// The map from the reference cell every field and position uses.
+    const Mapping<dim> &                 mapping;
     StokesSolver<dim>                       stokes;
     VolumeFraction<dim>                     volume_fraction;
     ElasticStress<dim>                      stress;

@@ -138,6 +138,7 @@ namespace viscofilm
     /// @p order: Time stepping/Order (2: BDF2 for Res ∂u/∂t, and u^{n-1}
     /// is kept for it and for the extrapolated velocity of the feet).
     StokesSolver(const parallel::distributed::Triangulation<dim> &triangulation,
+                 const Mapping<dim> &                           mapping,
                  const Parameters &                             parameters,
                  const Model &                                  model,
                  const BoundaryConditions<dim> &                boundary_conditions,

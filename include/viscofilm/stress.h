@@ -73,6 +73,7 @@ namespace viscofilm
     /// the Strang-split update of update()). @p stokes_quadrature: the one
     /// the Stokes assembly asks τ at.
     ElasticStress(const parallel::distributed::Triangulation<dim> &triangulation,
+                  const Mapping<dim> &                           mapping,
                   const Parameters &                             parameters,
                   const Model &                                  model,
                   const BoundaryConditions<dim> &boundary_conditions,

@@ -12,7 +12,6 @@
 
 #include <viscofilm/dimension.h>
 #include <viscofilm/dof_cell.h>
-#include <viscofilm/geometry.h>
 #include <viscofilm/model.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/stress.h>
@@ -67,16 +66,16 @@ namespace viscofilm
       , stokes(stokes)
       , volume_fraction(volume_fraction)
       , stress(stress)
-      , stokes_values(Geometry<dim>::mapping(stokes.dof_handler().get_triangulation()),
+      , stokes_values(stokes.mapping(),
                       stokes.dof_handler().get_fe(),
                       quadrature,
                       update_values | update_gradients | update_JxW_values |
                         extra_flags)
-      , phi_values(Geometry<dim>::mapping(stokes.dof_handler().get_triangulation()),
+      , phi_values(stokes.mapping(),
                    volume_fraction.dof_handler().get_fe(),
                    quadrature,
                    update_values | update_gradients)
-      , stress_values(Geometry<dim>::mapping(stokes.dof_handler().get_triangulation()),
+      , stress_values(stokes.mapping(),
                       stress.dof_handler().get_fe(),
                       quadrature,
                       update_values)

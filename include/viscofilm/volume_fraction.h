@@ -73,6 +73,7 @@ namespace viscofilm
     /// 0 there (a second transported fraction, the detached biofilm, which
     /// no boundary brings in).
     VolumeFraction(const parallel::distributed::Triangulation<dim> &triangulation,
+                   const Mapping<dim> &                           mapping,
                    const Parameters &                             parameters,
                    const BoundaryConditions<dim> &                boundary_conditions,
                    const std::string &name                   = "volume_fraction",
