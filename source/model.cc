@@ -2,6 +2,7 @@
 #include <viscofilm/model.h>
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace viscofilm
@@ -84,7 +85,7 @@ namespace viscofilm
                       "in φ (Mixture), τ acting unscaled on the flow.");
     prm.declare_entry("Mixture",
                       "viscosity",
-                      Patterns::Selection("viscosity|modulus"),
+                      Patterns::Selection("viscosity|modulus|geometric"),
                       "Rheology = phases: how the phases' elasticity is mixed "
                       "in φ. viscosity: ηp and λ each linear in φ, so the "
                       "modulus ηp/λ is the biofilm's at every φ > 0 beside a "
@@ -92,7 +93,11 @@ namespace viscofilm
                       "each linear in φ, ηp(φ) = G(φ) λ(φ): beside a Newtonian "
                       "water G vanishes with φ, as the thesis mixture's "
                       "φ-scaled stress does (doc/numerics.md, \"Rheology and "
-                      "units\"). ηs is linear in φ in both.");
+                      "units\"). geometric: G linear in φ as with modulus, λ "
+                      "the geometric mean λw^(1−φ) λb^φ (logarithmic mixing), "
+                      "so that a dilute fringe of biofilm in the water relaxes "
+                      "about as fast as the water's λ (> 0 then); "
+                      "doc/rheology.md. ηs is linear in φ in all three.");
     prm.declare_entry("Reynolds number",
                       "1.6667e-6",
                       Patterns::Double(0),
@@ -181,8 +186,10 @@ namespace viscofilm
     units    = prm.get("Units") == "SI" ? Units::SI : Units::dimensionless;
     rheology = prm.get("Rheology") == "phases" ? Rheology::phases :
                                                  Rheology::thesis_mixture;
-    mixture =
-      prm.get("Mixture") == "modulus" ? Mixture::modulus : Mixture::viscosity;
+    const std::string mixture_name = prm.get("Mixture");
+    mixture = mixture_name == "modulus"   ? Mixture::modulus :
+              mixture_name == "geometric" ? Mixture::geometric :
+                                            Mixture::viscosity;
     slip_parameter = prm.get_double("Slip parameter");
     diffusion      = prm.get_double("Diffusion coefficient");
     viscoelastic   = prm.get_bool("Viscoelastic");
@@ -269,6 +276,12 @@ namespace viscofilm
                       prefix + "Relaxation time must be > 0 (or 0 with Polymer "
                                "viscosity = 0: a Newtonian phase), got " +
                         to_text(p.relaxation_time));
+          // ln λ is mixed: a Newtonian phase needs a relaxation time of its
+          // own, the time the dilute biofilm relaxes in.
+          check_input(mixture != Mixture::geometric || p.relaxation_time > 0,
+                      prefix + "Relaxation time must be > 0 with Model/Mixture "
+                               "= geometric (λ is mixed as λw^(1−φ) λb^φ), got " +
+                        to_text(p.relaxation_time));
         }
     else if (si)
       {
@@ -354,13 +367,24 @@ namespace viscofilm
   {
     if (rheology == Rheology::thesis_mixture)
       return 1.0;
-    if (mixture == Mixture::modulus)
+    if (mixture != Mixture::viscosity)
       return mix(modulus(water), modulus(biofilm), volume_fraction);
     // Mixture = viscosity: the modulus of the phase with ηp and λ mixed.
     return modulus(
       Phase{0,
             mix(water.polymer_viscosity, biofilm.polymer_viscosity, volume_fraction),
-            mix(water.relaxation_time, biofilm.relaxation_time, volume_fraction)});
+            relaxation_time(volume_fraction)});
+  }
+
+
+  double
+  Model::relaxation_time(const double volume_fraction) const
+  {
+    if (mixture == Mixture::geometric)
+      return water.relaxation_time *
+             std::pow(biofilm.relaxation_time / water.relaxation_time,
+                      clipped(volume_fraction));
+    return mix(water.relaxation_time, biofilm.relaxation_time, volume_fraction);
   }
 
 
@@ -387,9 +411,7 @@ namespace viscofilm
   Model::relaxation(const double volume_fraction) const
   {
     if (rheology == Rheology::phases)
-      return {mix(water.relaxation_time, biofilm.relaxation_time, volume_fraction),
-              1.0,
-              1.0};
+      return {relaxation_time(volume_fraction), 1.0, 1.0};
     // φ L(c) + c/λ = ηp/(a λ²) I (eq. 2.40).
     const double lambda = biofilm.relaxation_time;
     return {clipped(volume_fraction), 1.0 / lambda, relaxed_conformation() / lambda};
@@ -446,9 +468,12 @@ namespace viscofilm
             << ", used only here): Re = ρUL/ηs(water) = "
             << density * U * L / water.solvent_viscosity << std::endl
             << "  mixed in φ (Mixture = "
-            << (mixture == Mixture::modulus ? "modulus): ηs, G = ηp/(aλ) and λ" :
-                                              "viscosity): ηs, ηp and λ")
-            << " linear" << std::endl;
+            << (mixture == Mixture::modulus ?
+                  "modulus): ηs, G = ηp/(aλ) and λ linear" :
+                mixture == Mixture::geometric ?
+                  "geometric): ηs and G = ηp/(aλ) linear, λ = λw^(1−φ) λb^φ" :
+                  "viscosity): ηs, ηp and λ linear")
+            << std::endl;
         for (const char *name : phase_names)
           {
             const Phase &p     = (std::string(name) == "Water" ? water : biofilm);

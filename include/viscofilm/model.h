@@ -37,12 +37,14 @@ namespace viscofilm
       phases
     };
     /// How `phases` mixes the two phases' elasticity in φ: ηp and λ linear
-    /// (G = ηp/λ the biofilm's at any φ > 0 next to a Newtonian water), or
-    /// G and λ linear (G → 0 with φ there).
+    /// (G = ηp/λ the biofilm's at any φ > 0 next to a Newtonian water), G
+    /// and λ linear (G → 0 with φ there), or G linear and λ geometric (a
+    /// dilute fringe also relaxes as fast as the water's λ).
     enum class Mixture
     {
       viscosity,
-      modulus
+      modulus,
+      geometric
     };
 
     /// One phase (water or biofilm): solvent viscosity ηs, polymer
@@ -91,11 +93,17 @@ namespace viscofilm
     stress(const SymmetricTensor<2, dim> &conformation,
            const double                   volume_fraction) const;
 
-    /// G(φ) in τ = G (c − c_rest I). Phases: ηp(φ)/(a λ(φ)) with ηp and λ
+    /// G(φ) in τ = G (c − c_rest I). Phases: ηp(φ)/(a λ(φ)) with ηp
     /// linear in φ (Mixture = viscosity), or G linear in φ between the
-    /// phases' ηp/(a λ) (Mixture = modulus; then ηp(φ) = a G(φ) λ(φ)).
+    /// phases' ηp/(a λ) (Mixture = modulus, geometric; then ηp(φ) = a G(φ)
+    /// λ(φ)).
     double
     stress_modulus(const double volume_fraction) const;
+
+    /// Phases: λ(φ), linear in φ, or the geometric mean λw^(1−φ) λb^φ
+    /// (Mixture = geometric).
+    double
+    relaxation_time(const double volume_fraction) const;
 
     /// The inverse of stress(): c of a given τ (c_rest I where G = 0).
     template <int dim>
