@@ -4,7 +4,8 @@ asks the manifolds for every cell's support points at each reinit, against
 the MappingQCache filled once per mesh (issue 12 items 4 and 5).
 
 Usage:  nice -n 10 benchmarks/mapping/run.py --old BUILD [--new BUILD]
-            [--repeat R] [--pillar-steps N] [--cylinder-steps N] [--work DIR]
+            [--repeat R] [--pillar-steps N] [--cylinder-steps N]
+            [--pillar-2d-steps N] [--cases NAME,...] [--work DIR]
 
 Runs each case R times (default 2) on one rank with the binary of each build
 (--old: a build of the code before the cache, e.g. main at 944c1b4; --new:
@@ -23,6 +24,14 @@ between runs is the machine's load). The cases:
                 benchmarks/cylinder/run.py --study (uniform level 1, bands of
                 width 2 around the cylinder), Wi = 0.5, k = 0.04, Order 2,
                 3 Picard iterations, N steps (default 20)
+  pillar-2d     prm/examples/pillar-streamer.prm (2D, the flat gmsh mesh:
+                MappingQ1), Number of steps = N (default 30: t = 0.3 s, 45
+                steps once CFL 2 shortens them), no output. Only in --cases:
+                the example needs Mixture = geometric, so its old build is
+                one of 95752ca (before the mapping was decided once per run,
+                when the feet took 60 % of its time), not of 944c1b4.
+
+--cases: the cases run (default pillar-3d,cylinder-2d).
 
 Both builds must give the same forces: the force columns of the last row of
 statistics.csv of each run are compared, "NO" beyond 1e-8 (relative).
@@ -46,21 +55,35 @@ import run as cylinder  # noqa: E402  benchmarks/cylinder/run.py
 SECTIONS = ["volume fraction", "stress update", "assemble stokes", "solve stokes", "softening"]
 
 
-def pillar_prm(directory, steps):
+def shipped_prm(prm, changes, directory, steps):
+    """The shipped parameter file @p prm (path below the repository) with
+    @p changes, N steps and no output into @p directory."""
     return """include %s
-subsection Boundary conditions
-  subsection Inlet
-    set Function constants = Umax=0.1, Tramp=0.0125, Toff=0.3125, H=1, W=0.5
-  end
-end
-subsection Time stepping
+%ssubsection Time stepping
   set Number of steps = %d
 end
 subsection Output
   set Directory = %s
   set Interval  = 0
 end
-""" % (os.path.join(REPO, "prm", "pillar-streamer-3d.prm"), steps, directory)
+""" % (os.path.join(REPO, prm), changes, steps, directory)
+
+
+def pillar_prm(directory, steps):
+    return shipped_prm("prm/pillar-streamer-3d.prm", """subsection Boundary conditions
+  subsection Inlet
+    set Function constants = Umax=0.1, Tramp=0.0125, Toff=0.3125, H=1, W=0.5
+  end
+end
+""", directory, steps)
+
+
+def pillar_2d_prm(directory, steps):
+    # Its mesh file is named relative to the example's directory.
+    return shipped_prm("prm/examples/pillar-streamer.prm", """subsection Geometry
+  set Mesh file = %s
+end
+""" % os.path.join(REPO, "geometry", "flow_cell.msh"), directory, steps)
 
 
 def cylinder_prm(directory, steps):
@@ -83,6 +106,8 @@ def main():
     parser.add_argument("--repeat", type=int, default=2)
     parser.add_argument("--pillar-steps", type=int, default=3)
     parser.add_argument("--cylinder-steps", type=int, default=20)
+    parser.add_argument("--pillar-2d-steps", type=int, default=30)
+    parser.add_argument("--cases", default="pillar-3d,cylinder-2d")
     parser.add_argument("--work", default=os.path.join(SCRIPT_DIR, "runs"))
     arguments = parser.parse_args()
 
@@ -90,8 +115,14 @@ def main():
     for name, build in builds.items():
         if not os.access(os.path.join(build, "viscofilm"), os.X_OK):
             die("--%s %s: no viscofilm there" % (name, build))
-    cases = {"pillar-3d": (pillar_prm, arguments.pillar_steps),
-             "cylinder-2d": (cylinder_prm, arguments.cylinder_steps)}
+    known = {"pillar-3d": (pillar_prm, arguments.pillar_steps),
+             "cylinder-2d": (cylinder_prm, arguments.cylinder_steps),
+             "pillar-2d": (pillar_2d_prm, arguments.pillar_2d_steps)}
+    names = arguments.cases.split(",")
+    for case in names:
+        if case not in known:
+            die("--cases: unknown case '%s' (known: %s)" % (case, ", ".join(known)))
+    cases = {case: known[case] for case in names}
 
     results = {}  # (case, build) -> {"wall": [...], "feet": [...], "forces": row}
     for case, (make_prm, steps) in cases.items():
@@ -108,7 +139,7 @@ def main():
                     entry.setdefault(section, []).append(timer_section(run["log"], section))
                 entry["forces"] = last_forces(directory)
 
-    print("Mapping on curved meshes, one rank, minimum of %d runs each" % arguments.repeat)
+    print("Mapping, one rank, minimum of %d runs each" % arguments.repeat)
     print("machine: %s" % machine_description())
     for name, build in builds.items():
         print("%s: %s" % (name, source_of(build)[1]))
