@@ -99,7 +99,9 @@ namespace viscofilm
     /// fraction where the flow enters. Bounded: semi-Lagrangian along the
     /// feet of φ's nodes (traced by @p feet with u^{n+1}; @p order 2: with
     /// (u^n + u^{n+1})/2, the midpoint rule), clipped, then the bounded
-    /// diffusion step and the mass fixer. Thesis: GLS-stabilised Galerkin.
+    /// diffusion step and the mass fixer. FCT: SSP-RK3 stages from u^n to
+    /// u^{n+1} (either order; @p feet unused), then the bounded diffusion
+    /// step. Thesis: GLS-stabilised Galerkin.
     /// @p estimate_error (order 2, bounded): also the first-order feet, for
     /// error_estimate(). Returns the linear solver's iteration count.
     unsigned int
