@@ -513,6 +513,8 @@ namespace viscofilm
     const auto [phi_min, phi_max] = volume_fraction.range();
     statistics.set("volume_fraction_min", phi_min);
     statistics.set("volume_fraction_max", phi_max);
+    if (parameters.stabilization.flux_corrected)
+      statistics.set("volume_fraction_substeps", volume_fraction.substeps());
     if (parameters.verification.exact_solution)
       {
         const auto [velocity_error, pressure_error] =

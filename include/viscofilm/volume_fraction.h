@@ -48,9 +48,11 @@ namespace viscofilm
       void
       parse_parameters(ParameterHandler &prm);
 
-      /// semi-Lagrangian: bounded (doc/numerics.md). thesis: GLS, and
-      /// softening by the same Galerkin diffusion.
+      /// semi-Lagrangian or FCT: bounded (doc/numerics.md). thesis: GLS,
+      /// and softening by the same Galerkin diffusion.
       bool bounded = true;
+      /// FCT: Eulerian, algebraic flux correction with SSP-RK3 (bounded too).
+      bool flux_corrected = false;
       /// constant: τ = GLS parameter (the thesis: 1). standard: τ = GLS
       /// parameter × (4/k² + (2|u|/h)²)^(-1/2).
       bool   standard_tau  = false;
@@ -97,7 +99,9 @@ namespace viscofilm
     /// fraction where the flow enters. Bounded: semi-Lagrangian along the
     /// feet of φ's nodes (traced by @p feet with u^{n+1}; @p order 2: with
     /// (u^n + u^{n+1})/2, the midpoint rule), clipped, then the bounded
-    /// diffusion step and the mass fixer. Thesis: GLS-stabilised Galerkin.
+    /// diffusion step and the mass fixer. FCT: SSP-RK3 stages from u^n to
+    /// u^{n+1} (either order; @p feet unused), then the bounded diffusion
+    /// step. Thesis: GLS-stabilised Galerkin.
     /// @p estimate_error (order 2, bounded): also the first-order feet, for
     /// error_estimate(). Returns the linear solver's iteration count.
     unsigned int
@@ -153,6 +157,11 @@ namespace viscofilm
     /// Smallest and largest nodal value.
     std::pair<double, double>
     range() const;
+
+    /// FCT: the sub-steps the last advance() took (its step cut to the
+    /// explicit scheme's positivity limit); 1 otherwise.
+    unsigned int
+    substeps() const;
 
   private:
     using FieldType = Field<dim, TrilinosWrappers::MPI::Vector>;
@@ -223,6 +232,29 @@ namespace viscofilm
     boundary_flux(const DoFHandler<dim> &                     stokes_dofs,
                   const TrilinosWrappers::MPI::BlockVector &velocity) const;
 
+    /// The flux-corrected transport's operator at one velocity: the Galerkin
+    /// convection k_ij = −∫ψ_i u·∇ψ_j of the owned free nodes' rows (and
+    /// k_ji), the lumped mass, and the boundary's lumped inflow and outflow.
+    struct TransportOperator;
+
+    /// FCT: φ^{n+1} from φ^n by SSP-RK3 with the velocity interpolated
+    /// linearly between u^n and u^{n+1} at each stage, every stage limited.
+    void
+    flux_corrected_step(const StokesSolver<dim> &stokes, const double time_step);
+
+    /// One limited forward Euler stage: @p result := φ + k M_L^{-1}(low-order
+    /// rate + limited antidiffusion) from the ghosted @p phi with the operator
+    /// @p theta of the way from u^n to u^{n+1}; @p flux gets its boundary
+    /// rates (outflow, inflow) × @p weight.
+    void
+    flux_corrected_stage(const TransportOperator &      op,
+                         const double                   theta,
+                         const double                   time_step,
+                         const TrilinosWrappers::MPI::Vector &phi,
+                         TrilinosWrappers::MPI::Vector &result,
+                         const double                   weight,
+                         Exchange &                     flux) const;
+
     /// The value φ takes where the flow enters through boundary @p id.
     double
     inflow_value(const types::boundary_id id) const;
@@ -246,6 +278,7 @@ namespace viscofilm
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;
     double                        last_error_estimate = 0;
+    unsigned int                  last_substeps       = 1;
     Exchange exchange, old_exchange; // since t = 0; at t_n, for restore_old()
   };
 } // namespace viscofilm
