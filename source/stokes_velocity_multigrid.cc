@@ -316,19 +316,17 @@ namespace viscofilm
     Levels &L = *levels;
     // Coarser levels: the mean of the children's 2η (DG0 restriction sums
     // them; so it does with ones, to count them).
-    MGLevelObject<VectorType> ones(L.min, L.max);
-    ones[L.max].reinit(L.viscosity[L.max]);
-    ones[L.max] = 1.0;
     for (unsigned int l = L.max; l > L.min; --l)
       {
-        ones[l - 1].reinit(L.viscosity[l - 1]);
-        L.viscosity[l - 1] = 0;
+        VectorType ones(L.viscosity[l]), children(L.viscosity[l - 1]);
+        ones = 1.0;
+        ones.update_ghost_values();
         L.viscosity[l].update_ghost_values();
-        ones[l].update_ghost_values();
+        L.viscosity[l - 1] = 0;
         L.cell_transfers[l].restrict_and_add(L.viscosity[l - 1], L.viscosity[l]);
-        L.cell_transfers[l].restrict_and_add(ones[l - 1], ones[l]);
+        L.cell_transfers[l].restrict_and_add(children, ones);
         for (const auto i : L.viscosity[l - 1].locally_owned_elements())
-          L.viscosity[l - 1][i] /= ones[l - 1][i];
+          L.viscosity[l - 1][i] /= children[i];
       }
 
     MGLevelObject<typename Levels::Smoother::AdditionalData> smoother_data(L.min, L.max);
