@@ -10,6 +10,7 @@
 
 #include <viscofilm/boundary_conditions.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -35,8 +36,9 @@ namespace viscofilm
     class StokesVelocity : public Function<dim>
     {
     public:
-      StokesVelocity(const Function<dim> &velocity)
-        : Function<dim>(dim + 1)
+      /// @p n_components: the element's (dim + 1 with the pressure, dim alone).
+      StokesVelocity(const Function<dim> &velocity, const unsigned int n_components)
+        : Function<dim>(n_components)
         , velocity(velocity)
       {}
 
@@ -220,8 +222,12 @@ namespace viscofilm
   void
   BoundaryConditions<dim>::constrain_velocity(const DoFHandler<dim> & dof_handler,
                                          const double               time,
-                                         AffineConstraints<double> &constraints) const
+                                         AffineConstraints<double> &constraints,
+                                         const bool                 homogeneous) const
   {
+    const unsigned int               n_components = dof_handler.get_fe().n_components();
+    const Functions::ZeroFunction<dim> zero(n_components);
+    const Functions::ZeroFunction<dim> zero_velocity(dim);
     // Walls first: a dof on a corner keeps the first constraint it gets, and
     // the no-slip value is the physically right one there.
     for (const Type type : {Type::no_slip, Type::velocity, Type::pressure, Type::slip})
@@ -233,7 +239,7 @@ namespace viscofilm
           if (boundary_type != type)
             continue;
           const ExpressionAt<dim>   velocity_now = boundary.velocity.at(time);
-          const StokesVelocity<dim> velocity(velocity_now);
+          const StokesVelocity<dim> velocity(velocity_now, n_components);
 
           if (type == Type::slip && boundary.normal_axis < 0)
             VectorTools::compute_no_normal_flux_constraints(dof_handler,
@@ -244,7 +250,9 @@ namespace viscofilm
             {
               // Tangential velocity on a boundary not normal to an axis.
               const std::map<types::boundary_id, const Function<dim> *> values = {
-                {boundary.id, &velocity_now}};
+                {boundary.id,
+                 homogeneous ? static_cast<const Function<dim> *>(&zero_velocity) :
+                               &velocity_now}};
               VectorTools::compute_nonzero_tangential_flux_constraints(
                 dof_handler, 0, {boundary.id}, values, constraints);
             }
@@ -253,21 +261,30 @@ namespace viscofilm
               // On a boundary normal to a coordinate axis: the normal
               // component (slip), the tangential ones (pressure); elsewhere
               // every velocity component.
-              ComponentMask mask(dim + 1, false);
+              ComponentMask mask(n_components, false);
               for (unsigned int d = 0; d < dim; ++d)
                 mask.set(d,
                          type == Type::slip     ? int(d) == boundary.normal_axis :
                          type == Type::pressure ? int(d) != boundary.normal_axis :
                                                   true);
-              if (type == Type::no_slip || type == Type::slip)
+              if (homogeneous || type == Type::no_slip || type == Type::slip)
                 VectorTools::interpolate_boundary_values(
-                  dof_handler, boundary.id, Functions::ZeroFunction<dim>(dim + 1),
-                  constraints, mask);
+                  dof_handler, boundary.id, zero, constraints, mask);
               else
                 VectorTools::interpolate_boundary_values(
                   dof_handler, boundary.id, velocity, constraints, mask);
             }
         }
+  }
+
+
+  template <int dim>
+  bool
+  BoundaryConditions<dim>::has_periodic_pair() const
+  {
+    return std::any_of(boundaries.begin(), boundaries.end(), [](const Boundary &boundary) {
+      return boundary.type == Type::periodic;
+    });
   }
 
 

@@ -38,6 +38,12 @@ namespace viscofilm
     initial_conditions.parse_parameters(
       prm, directory, BoundingBox<dim>({geometry.lower_left, geometry.upper_right}));
     stokes_solver.parse_parameters(prm);
+    check_input(stokes_solver.velocity_preconditioner !=
+                    StokesSolver<dim>::VelocityPreconditioner::gmg ||
+                  !boundary_conditions.has_periodic_pair(),
+                "Stokes solver/Preconditioner/Velocity preconditioner = GMG does not "
+                "support periodic boundaries (its levels have no periodic "
+                "constraints); use Velocity preconditioner = AMG");
     stress.parse_parameters(prm);
     departure_feet.parse_parameters(prm);
     stabilization.parse_parameters(prm);

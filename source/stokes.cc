@@ -146,6 +146,24 @@ namespace viscofilm
                       "inequality still equivalent (ASPECT's choice). "
                       "Default: Q1 sub-cells in 2D, Q1 sub-cells by component "
                       "in 3D, the faster in each (doc/performance.md).");
+    prm.declare_entry("Velocity preconditioner",
+                      "AMG",
+                      Patterns::Selection("AMG|GMG"),
+                      "The velocity block's approximate inverse. AMG: Trilinos "
+                      "ML on the AMG matrix (the AMG settings above). GMG: one "
+                      "V-cycle of geometric multigrid on the globally coarsened "
+                      "meshes, matrix-free Q2 operators with the system's "
+                      "viscosity on the active mesh and cell means of it on "
+                      "coarser ones, Chebyshev smoothing, CG with AMG on the "
+                      "coarse mesh (doc/numerics.md); not with periodic "
+                      "boundaries. Measured slower than AMG so far "
+                      "(doc/performance.md).");
+    prm.declare_entry("GMG smoother degree",
+                      "4",
+                      Patterns::Integer(1),
+                      "Velocity preconditioner = GMG: the degree of the "
+                      "Chebyshev smoother (matrix-vector products per "
+                      "smoothing) on each level, >= 1.");
     prm.declare_entry("Velocity inner tolerance",
                       "1e-2",
                       Patterns::Double(0, 1),
@@ -228,6 +246,10 @@ namespace viscofilm
     amg_matrix = (m == "Q2"           ? AMGMatrix::q2 :
                   m == "Q1 sub-cells" ? AMGMatrix::q1_subcells :
                                         AMGMatrix::q1_subcells_by_component);
+    velocity_preconditioner   = (prm.get("Velocity preconditioner") == "GMG" ?
+                                   VelocityPreconditioner::gmg :
+                                   VelocityPreconditioner::amg);
+    gmg_smoother_degree       = prm.get_integer("GMG smoother degree");
     velocity_inner_tolerance  = prm.get_double("Velocity inner tolerance");
     velocity_inner_iterations = prm.get_integer("Velocity inner iterations");
     schur_inner_tolerance     = prm.get_double("Schur inner tolerance");
@@ -264,7 +286,7 @@ namespace viscofilm
     , mpi_communicator(triangulation.get_communicator())
     , fe(FE_Q<dim>(2), dim, *pressure_element<dim>(parameters.pressure_element), 1)
     , order(order)
-    , linear_solver(StokesLinearSolver<dim>::create(parameters, model))
+    , linear_solver(StokesLinearSolver<dim>::create(parameters, model, boundary_conditions))
   {
     if (order == 2)
       this->carry(older_solution);

@@ -20,10 +20,12 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <viscofilm/stokes_linear_solver.h>
+#include <viscofilm/stokes_velocity_multigrid.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <type_traits>
 
 namespace viscofilm
 {
@@ -33,19 +35,20 @@ namespace viscofilm
      * Block upper-triangular preconditioner for [A B^T; B 0] (step-55's
      * approach): the Schur complement B A^{-1} B^T is replaced by the
      * (1/η)-weighted pressure mass matrix, which is spectrally equivalent to
-     * it for variable viscosity, and A^{-1} by AMG cycles (cheap) or by
-     * an AMG-preconditioned CG solve (expensive, ASPECT's fallback for hard
-     * cases such as hanging nodes at large viscosity contrasts). FGMRES
-     * tolerates that the inner CG solves make it vary from call to call.
+     * it for variable viscosity, and A^{-1} by multigrid cycles (AMG or GMG,
+     * cheap) or by a CG solve preconditioned with them (expensive, ASPECT's
+     * fallback for hard cases such as hanging nodes at large viscosity
+     * contrasts). FGMRES tolerates that the inner CG solves make it vary from
+     * call to call.
      */
-    template <int dim>
+    template <int dim, typename VelocityPreconditioner>
     class BlockSchurPreconditioner : public Subscriptor
     {
     public:
       BlockSchurPreconditioner(
         const TrilinosWrappers::BlockSparseMatrix &system_matrix,
         const TrilinosWrappers::SparseMatrix &     weighted_mass,
-        const TrilinosWrappers::PreconditionAMG &  velocity_amg,
+        const VelocityPreconditioner &             velocity_amg,
         const TrilinosWrappers::PreconditionJacobi &mass_jacobi,
         const typename StokesSolver<dim>::Parameters & parameters,
         const bool                                  expensive)
@@ -95,7 +98,7 @@ namespace viscofilm
     private:
       const TrilinosWrappers::BlockSparseMatrix & system_matrix;
       const TrilinosWrappers::SparseMatrix &      weighted_mass;
-      const TrilinosWrappers::PreconditionAMG &   velocity_amg;
+      const VelocityPreconditioner &              velocity_amg;
       const TrilinosWrappers::PreconditionJacobi &mass_jacobi;
       const typename StokesSolver<dim>::Parameters & parameters;
       const bool                                  expensive;
@@ -282,9 +285,12 @@ namespace viscofilm
     class BlockPreconditioned : public StokesLinearSolver<dim>
     {
     public:
-      BlockPreconditioned(const typename StokesSolver<dim>::Parameters &parameters, const Model &model)
+      BlockPreconditioned(const typename StokesSolver<dim>::Parameters &parameters,
+                          const Model &                                 model,
+                          const BoundaryConditions<dim> &               boundary_conditions)
         : parameters(parameters)
         , model(model)
+        , boundary_conditions(boundary_conditions)
       {}
 
       bool
@@ -336,8 +342,23 @@ namespace viscofilm
 
       using AMGMatrix = typename StokesSolver<dim>::AMGMatrix;
 
+      bool
+      geometric_multigrid() const
+      {
+        return parameters.velocity_preconditioner ==
+               StokesSolver<dim>::VelocityPreconditioner::gmg;
+      }
+
+      /// Whether a velocity preconditioner was built for this mesh.
+      bool
+      has_velocity_preconditioner() const
+      {
+        return velocity_amg || multigrid_built;
+      }
+
       const typename StokesSolver<dim>::Parameters &parameters;
       const Model &                   model;
+      const BoundaryConditions<dim> & boundary_conditions;
       const DoFHandler<dim> *         dofs = nullptr;
       MPI_Comm                        mpi_communicator = MPI_COMM_SELF;
 
@@ -380,6 +401,10 @@ namespace viscofilm
       double              viscosity_change        = 0;
 
       std::unique_ptr<TrilinosWrappers::PreconditionAMG>    velocity_amg;
+      /// Velocity preconditioner = GMG: built from the cell viscosities that
+      /// add_cell_matrix() hands it.
+      std::unique_ptr<VelocityMultigrid<dim>>               multigrid;
+      bool                                                  multigrid_built = false;
       std::unique_ptr<TrilinosWrappers::PreconditionJacobi> mass_jacobi;
     };
 
@@ -397,6 +422,7 @@ namespace viscofilm
 
       // The AMG refers to the matrix it was built from: drop it first.
       velocity_amg.reset();
+      multigrid_built = false;
       mass_jacobi.reset();
       viscosity_at_build.clear();
       rebuild_requested = false;
@@ -426,7 +452,14 @@ namespace viscofilm
       reinit(coupling, system_matrix);
       reinit(mass_coupling, preconditioner_matrix);
 
-      if (parameters.amg_matrix != AMGMatrix::q2)
+      if (geometric_multigrid())
+        {
+          if (!multigrid)
+            multigrid = std::make_unique<VelocityMultigrid<dim>>(boundary_conditions,
+                                                                 parameters.gmg_smoother_degree);
+          multigrid->reinit(dofs, owned_partitioning[0]);
+        }
+      else if (parameters.amg_matrix != AMGMatrix::q2)
         {
           groups = subcell_groups(dofs.get_fe(),
                                   parameters.amg_matrix == AMGMatrix::q1_subcells_by_component ?
@@ -499,7 +532,16 @@ namespace viscofilm
                                              cell.dof_indices,
                                              preconditioner_matrix);
 
-      if (parameters.amg_matrix != AMGMatrix::q2)
+      if (geometric_multigrid())
+        {
+          // 2(η + η_e), the level operators' coefficient.
+          std::vector<double> viscosity(cell.JxW.size());
+          for (unsigned int q = 0; q < cell.JxW.size(); ++q)
+            viscosity[q] = 2 * (cell.viscosity[q] + cell.elastic_viscosity[q]);
+          multigrid->set_cell_viscosity(cell.cell, viscosity, cell.JxW);
+          mass_coefficient = cell.mass_coefficient;
+        }
+      else if (parameters.amg_matrix != AMGMatrix::q2)
         {
           subcell_sources.push_back(
             {cell.cell,
@@ -515,7 +557,8 @@ namespace viscofilm
       if (parameters.reuse_preconditioner)
         for (unsigned int q = 0; q < cell.JxW.size(); ++q)
           {
-            if (velocity_amg && viscosity_now.size() < viscosity_at_build.size())
+            if (has_velocity_preconditioner() &&
+                viscosity_now.size() < viscosity_at_build.size())
               {
                 change_integrals[0] +=
                   std::abs(std::log(cell.viscosity[q] /
@@ -539,7 +582,7 @@ namespace viscofilm
       // Keep the AMG while it still fits the new matrix (Reuse).
       // A collective decision: a rank without cells has no η of its own
       // but must join the sum.
-      const bool compared = parameters.reuse_preconditioner && velocity_amg;
+      const bool compared = parameters.reuse_preconditioner && has_velocity_preconditioner();
       viscosity_change = 0;
       if (compared)
         {
@@ -584,6 +627,15 @@ namespace viscofilm
     void
     BlockPreconditioned<dim>::build_preconditioner()
     {
+      preconditioner_is_current = true;
+      rebuild_requested         = false;
+      ++n_builds;
+      if (geometric_multigrid())
+        {
+          multigrid->build(mass_coefficient);
+          multigrid_built = true;
+          return;
+        }
       TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
       DoFTools::extract_constant_modes(*dofs,
                                        dofs->get_fe().component_mask(
@@ -603,9 +655,6 @@ namespace viscofilm
                                  system_matrix.block(0, 0) :
                                  subcell_matrix,
                                amg_data);
-      preconditioner_is_current = true;
-      rebuild_requested         = false;
-      ++n_builds;
     }
 
 
@@ -638,15 +687,22 @@ namespace viscofilm
               control,
               SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(
                 parameters.krylov_basis));
-            const BlockSchurPreconditioner<dim> preconditioner(system_matrix,
-                                                          preconditioner_matrix.block(1, 1),
-                                                          *velocity_amg,
-                                                          *mass_jacobi,
-                                                          parameters,
-                                                          expensive);
+            const auto solve_with = [&](const auto &velocity_preconditioner) {
+              const BlockSchurPreconditioner<dim, std::decay_t<decltype(velocity_preconditioner)>>
+                preconditioner(system_matrix,
+                               preconditioner_matrix.block(1, 1),
+                               velocity_preconditioner,
+                               *mass_jacobi,
+                               parameters,
+                               expensive);
+              solver.solve(system_matrix, solution, rhs, preconditioner);
+            };
             try
               {
-                solver.solve(system_matrix, solution, rhs, preconditioner);
+                if (geometric_multigrid())
+                  solve_with(*multigrid);
+                else
+                  solve_with(*velocity_amg);
                 iterations += control.last_step();
                 return true;
               }
@@ -710,16 +766,18 @@ namespace viscofilm
   template <int dim>
   std::unique_ptr<StokesLinearSolver<dim>>
   make_block_preconditioned_solver(const typename StokesSolver<dim>::Parameters &parameters,
-                                   const Model &                   model)
+                                   const Model &                   model,
+                                   const BoundaryConditions<dim> & boundary_conditions)
   {
-    return std::make_unique<BlockPreconditioned<dim>>(parameters, model);
+    return std::make_unique<BlockPreconditioned<dim>>(parameters, model, boundary_conditions);
   }
 
 
 #define INSTANTIATE(dim)                                                 \
   template std::unique_ptr<StokesLinearSolver<dim>>                        \
   make_block_preconditioned_solver<dim>(const typename StokesSolver<dim>::Parameters &, \
-                                        const Model &);
+                                        const Model &,                                 \
+                                        const BoundaryConditions<dim> &);
   VISCOFILM_FOR_EACH_DIM(INSTANTIATE)
 #undef INSTANTIATE
 } // namespace viscofilm

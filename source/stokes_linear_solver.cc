@@ -4,7 +4,9 @@ namespace viscofilm
 {
   template <int dim>
   std::unique_ptr<StokesLinearSolver<dim>>
-  StokesLinearSolver<dim>::create(const typename StokesSolver<dim>::Parameters &parameters, const Model &model)
+  StokesLinearSolver<dim>::create(const typename StokesSolver<dim>::Parameters &parameters,
+                                  const Model &                                 model,
+                                  const BoundaryConditions<dim> &               boundary_conditions)
   {
     switch (parameters.method)
       {
@@ -13,7 +15,7 @@ namespace viscofilm
         case StokesSolver<dim>::Method::thesis:
           return make_thesis_solver<dim>(parameters);
         default:
-          return make_block_preconditioned_solver<dim>(parameters, model);
+          return make_block_preconditioned_solver<dim>(parameters, model, boundary_conditions);
       }
   }
 

@@ -67,12 +67,19 @@ namespace viscofilm
     parse_parameters(ParameterHandler &                          prm,
                      const std::vector<typename Geometry<dim>::NamedBoundary> &boundaries);
 
-    /// Add the velocity constraints at time @p time to @p constraints for a
-    /// Stokes element whose first dim components are the velocity.
+    /// Add the velocity constraints at time @p time to @p constraints for an
+    /// element whose first dim components are the velocity (the Stokes
+    /// element, or the velocity alone); @p homogeneous: with zero values
+    /// (a multigrid level's).
     void
     constrain_velocity(const DoFHandler<dim> &    dof_handler,
                        const double               time,
-                       AffineConstraints<double> &constraints) const;
+                       AffineConstraints<double> &constraints,
+                       const bool                 homogeneous = false) const;
+
+    /// Whether a pair of boundaries is periodic.
+    bool
+    has_periodic_pair() const;
 
     /// Identify the coarse faces of each periodic pair (before refinement).
     void

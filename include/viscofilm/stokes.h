@@ -72,6 +72,13 @@ namespace viscofilm
       q1_subcells_by_component
     };
 
+    /// The velocity block's approximate inverse in the block preconditioner.
+    enum class VelocityPreconditioner
+    {
+      amg, // Trilinos ML on the AMG matrix
+      gmg  // geometric multigrid, matrix-free (stokes_velocity_multigrid.h)
+    };
+
     /// The pressure space of the Taylor–Hood pair.
     enum class PressureElement
     {
@@ -108,6 +115,8 @@ namespace viscofilm
       /// The matrix ML builds the velocity block's hierarchy from.
       AMGMatrix    amg_matrix = dim == 2 ? AMGMatrix::q1_subcells :
                                              AMGMatrix::q1_subcells_by_component;
+      VelocityPreconditioner velocity_preconditioner = VelocityPreconditioner::amg;
+      unsigned int gmg_smoother_degree = 4; // Chebyshev degree on each level
       double       velocity_inner_tolerance  = 1e-2; // expensive iterations
       unsigned int velocity_inner_iterations = 1000;
       double       schur_inner_tolerance     = 1e-3;

@@ -54,7 +54,9 @@ namespace viscofilm
   {
   public:
     static std::unique_ptr<StokesLinearSolver<dim>>
-    create(const typename StokesSolver<dim>::Parameters &parameters, const Model &model);
+    create(const typename StokesSolver<dim>::Parameters &parameters,
+           const Model &                                 model,
+           const BoundaryConditions<dim> &               boundary_conditions);
 
     virtual ~StokesLinearSolver() = default;
 
@@ -109,7 +111,8 @@ namespace viscofilm
   template <int dim>
   std::unique_ptr<StokesLinearSolver<dim>>
   make_block_preconditioned_solver(const typename StokesSolver<dim>::Parameters &parameters,
-                                   const Model &                   model);
+                                   const Model &                   model,
+                                   const BoundaryConditions<dim> & boundary_conditions);
   template <int dim>
   std::unique_ptr<StokesLinearSolver<dim>>
   make_direct_solver(const typename StokesSolver<dim>::Parameters &parameters);
