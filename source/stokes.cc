@@ -156,8 +156,9 @@ namespace viscofilm
                       "viscosity on the active mesh and cell means of it on "
                       "coarser ones, Chebyshev smoothing, CG with AMG on the "
                       "coarse mesh (doc/numerics.md); not with periodic "
-                      "boundaries. Measured slower than AMG so far "
-                      "(doc/performance.md).");
+                      "boundaries. Half the FGMRES iterations of AMG, "
+                      "independent of the mesh; about as fast per solve on "
+                      "this project's machine (doc/performance.md).");
     prm.declare_entry("GMG smoother degree",
                       "4",
                       Patterns::Integer(1),

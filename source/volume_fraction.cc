@@ -42,7 +42,7 @@ namespace viscofilm
                       "Galerkin (eq. 3.47-3.50), softening by Galerkin "
                       "diffusion; not bounded. FCT: Eulerian flux-corrected "
                       "transport (Galerkin limited towards discrete upwinding "
-                      "by Zalesak's limiter), SSP-RK3 in time with the "
+                      "by monolithic convex limiting), SSP-RK3 in time with the "
                       "velocity interpolated between u^n and u^{n+1}, "
                       "sub-stepped to its positivity limit; bounded like "
                       "semi-Lagrangian, conservative, uniform meshes only "

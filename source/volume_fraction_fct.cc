@@ -1,5 +1,5 @@
 // Stabilization/Volume fraction scheme = FCT: algebraic flux correction
-// (Kuzmin; Zalesak's limiter) of the Galerkin convection of φ towards its
+// (Kuzmin's monolithic convex limiting) of the Galerkin convection of φ towards its
 // discrete upwinding, SSP-RK3 in time (doc/numerics.md, "Flux-corrected
 // transport").
 #include <deal.II/base/quadrature_lib.h>
