@@ -534,10 +534,11 @@ namespace viscofilm
 
       if (geometric_multigrid())
         {
-          // 2(η + η_e), the level operators' coefficient.
+          // 2η (the assembly's η holds the implicit elastic viscosity), the
+          // level operators' coefficient.
           std::vector<double> viscosity(cell.JxW.size());
           for (unsigned int q = 0; q < cell.JxW.size(); ++q)
-            viscosity[q] = 2 * (cell.viscosity[q] + cell.elastic_viscosity[q]);
+            viscosity[q] = 2 * cell.viscosity[q];
           multigrid->set_cell_viscosity(cell.cell, viscosity, cell.JxW);
           mass_coefficient = cell.mass_coefficient;
         }
