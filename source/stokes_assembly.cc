@@ -157,6 +157,10 @@ namespace viscofilm
     const unsigned int    n_q_points    = quadrature.size();
     const FEValuesExtractors::Vector velocities(0);
     const FEValuesExtractors::Scalar pressure(dim);
+    // The component of each shape function (dim: the pressure).
+    std::vector<unsigned int> component(dofs_per_cell);
+    for (unsigned int i = 0; i < dofs_per_cell; ++i)
+      component[i] = fe.system_to_component_index(i).first;
 
     const bool implicit_elastic =
       parameters.implicit_elastic_viscosity && model.viscoelastic;
@@ -289,19 +293,36 @@ namespace viscofilm
             model.stress_coupling(volume_fraction[q]) * scratch.tau[q] -
             2 * elastic_viscosity[q] * scratch.iterate_strain_rate[q];
 
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          // The lower triangle of the symmetric (m u, v) + (2η D(u), D(v)) −
+          // (p, ∇·v) − (∇·u, q), mirrored below; a shape function has one
+          // non-zero component, so the terms a pair cannot have are skipped
+          // (in 3D a third of the assembly's time).
+          const double two_eta = 2 * viscosity[q];
+          for (unsigned int i = 0; i < dofs_per_cell && need_matrix; ++i)
             {
-              for (unsigned int j = 0; j < dofs_per_cell && need_matrix; ++j)
-                {
-                  cell_matrix(i, j) +=
-                    (mass_coefficient * phi_u[i] * phi_u[j] +
-                     2 * viscosity[q] * (symgrad_phi_u[i] * symgrad_phi_u[j]) -
-                     div_phi_u[i] * phi_p[j] - phi_p[i] * div_phi_u[j]) *
-                    JxW;
-                }
-              cell_rhs(i) += (rhs_vector * phi_u[i] - phi_tau * symgrad_phi_u[i]) * JxW;
+              const unsigned int ci = component[i];
+              if (ci == dim)
+                for (unsigned int j = 0; j <= i; ++j)
+                  cell_matrix(i, j) -= (component[j] == dim ? 0.0 : phi_p[i] * div_phi_u[j]) * JxW;
+              else
+                for (unsigned int j = 0; j <= i; ++j)
+                  {
+                    const unsigned int cj = component[j];
+                    cell_matrix(i, j) +=
+                      (cj == dim ?
+                         -div_phi_u[i] * phi_p[j] :
+                         (cj == ci ? (mass_coefficient * phi_u[i][ci]) * phi_u[j][ci] : 0.0) +
+                           two_eta * (symgrad_phi_u[i] * symgrad_phi_u[j])) *
+                      JxW;
+                  }
             }
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            cell_rhs(i) += (rhs_vector * phi_u[i] - phi_tau * symgrad_phi_u[i]) * JxW;
         }
+      if (need_matrix)
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
+            cell_matrix(i, j) = cell_matrix(j, i);
 
       // −∫ P n·v ds (Type = pressure; outflow has P = 0).
       FEFaceValues<dim> &fe_face_values = scratch.fe_face_values;

@@ -507,17 +507,23 @@ namespace viscofilm
       const FEValuesExtractors::Scalar pressure(dim);
       const unsigned int               dofs_per_cell = cell.dof_indices.size();
 
-      // (1/η) M_p, the Schur complement's stand-in.
+      // (1/η) M_p, the Schur complement's stand-in: its pressure rows and
+      // columns only, the others are zero.
       FullMatrix<double> &cell_mass = cell.preconditioner_matrix;
       cell_mass.reinit(dofs_per_cell, dofs_per_cell);
-      std::vector<double> phi_p(dofs_per_cell);
+      std::vector<unsigned int> pressure_dofs;
+      for (unsigned int k = 0; k < dofs_per_cell; ++k)
+        if (fe_values.get_fe().system_to_component_index(k).first == dim)
+          pressure_dofs.push_back(k);
+      std::vector<double> phi_p(pressure_dofs.size());
       for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
         {
-          for (unsigned int k = 0; k < dofs_per_cell; ++k)
-            phi_p[k] = fe_values[pressure].value(k, q);
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
-            for (unsigned int j = 0; j < dofs_per_cell; ++j)
-              cell_mass(i, j) += phi_p[i] * phi_p[j] / cell.viscosity[q] * fe_values.JxW(q);
+          for (unsigned int k = 0; k < pressure_dofs.size(); ++k)
+            phi_p[k] = fe_values[pressure].value(pressure_dofs[k], q);
+          for (unsigned int i = 0; i < pressure_dofs.size(); ++i)
+            for (unsigned int j = 0; j < pressure_dofs.size(); ++j)
+              cell_mass(pressure_dofs[i], pressure_dofs[j]) +=
+                phi_p[i] * phi_p[j] / cell.viscosity[q] * fe_values.JxW(q);
         }
     }
 

@@ -131,6 +131,57 @@ namespace viscofilm
       Table<2, VectorizedArray<double>> viscosity;
       double                            mass = 0;
     };
+
+
+    /// CG with AMG on the coarse mesh, to a residual reduction of 1e-4. Its
+    /// failure is reported as its own: a SolverControl::NoConvergence let
+    /// through would be taken for the outer FGMRES's.
+    template <int dim>
+    class CoarseSolve : public MGCoarseGridBase<VectorType>
+    {
+    public:
+      CoarseSolve(const ViscousOperator<dim> &operator_, TrilinosWrappers::SparseMatrix &&matrix)
+        : level_operator(operator_)
+        , matrix(std::move(matrix))
+      {
+        TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
+        DoFTools::extract_constant_modes(level_operator.get_matrix_free()->get_dof_handler(),
+                                         ComponentMask(dim, true),
+                                         amg_data.constant_modes);
+        amg_data.elliptic              = true;
+        amg_data.higher_order_elements = true;
+        amg.initialize(this->matrix, amg_data);
+      }
+
+      void
+      operator()(const unsigned int, VectorType &dst, const VectorType &src) const override
+      {
+        ReductionControl     control(max_iterations, 1e-14, 1e-4);
+        SolverCG<VectorType> cg(control);
+        dst = 0;
+        try
+          {
+            cg.solve(level_operator, dst, src, amg);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            AssertThrow(false,
+                        ExcMessage("the geometric multigrid's coarse-mesh solve (CG with AMG, " +
+                                   std::to_string(matrix.m()) +
+                                   " velocity dofs) did not converge in " +
+                                   std::to_string(max_iterations) + " iterations: residual " +
+                                   Utilities::to_string(e.last_residual) +
+                                   " (Stokes solver/Preconditioner/Velocity "
+                                   "preconditioner = GMG; AMG is the robust choice)"));
+          }
+      }
+
+    private:
+      static constexpr unsigned int     max_iterations = 1000;
+      const ViscousOperator<dim> &      level_operator;
+      TrilinosWrappers::SparseMatrix    matrix;
+      TrilinosWrappers::PreconditionAMG amg;
+    };
   } // namespace
 
 
@@ -162,15 +213,7 @@ namespace viscofilm
 
     std::unique_ptr<mg::Matrix<VectorType>>                                 level_matrices;
     MGSmootherPrecondition<ViscousOperator<dim>, Smoother, VectorType>     smoother;
-    TrilinosWrappers::SparseMatrix                                          coarse_matrix;
-    TrilinosWrappers::PreconditionAMG                                       coarse_amg;
-    ReductionControl                                                        coarse_control{1000, 1e-14, 1e-4};
-    SolverCG<VectorType>                                                    coarse_cg{coarse_control};
-    std::unique_ptr<MGCoarseGridIterativeSolver<VectorType,
-                                                SolverCG<VectorType>,
-                                                ViscousOperator<dim>,
-                                                TrilinosWrappers::PreconditionAMG>>
-                                                                            coarse;
+    std::unique_ptr<CoarseSolve<dim>>                                       coarse;
     std::unique_ptr<Multigrid<VectorType>>                                  multigrid;
     std::unique_ptr<PreconditionMG<dim, VectorType, Transfer>>              preconditioner;
     mutable VectorType                                                      fine_src, fine_dst;
@@ -364,17 +407,9 @@ namespace viscofilm
     L.level_matrices = std::make_unique<mg::Matrix<VectorType>>(L.operators);
     L.smoother.initialize(L.operators, smoother_data);
 
-    L.operators[L.min]->compute_matrix(L.constraints[L.min], L.coarse_matrix);
-    TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
-    DoFTools::extract_constant_modes(L.dofs[L.min], ComponentMask(dim, true), amg_data.constant_modes);
-    amg_data.elliptic              = true;
-    amg_data.higher_order_elements = true;
-    L.coarse_amg.initialize(L.coarse_matrix, amg_data);
-    L.coarse = std::make_unique<MGCoarseGridIterativeSolver<VectorType,
-                                                             SolverCG<VectorType>,
-                                                             ViscousOperator<dim>,
-                                                             TrilinosWrappers::PreconditionAMG>>(
-      L.coarse_cg, *L.operators[L.min], L.coarse_amg);
+    TrilinosWrappers::SparseMatrix coarse_matrix;
+    L.operators[L.min]->compute_matrix(L.constraints[L.min], coarse_matrix);
+    L.coarse = std::make_unique<CoarseSolve<dim>>(*L.operators[L.min], std::move(coarse_matrix));
     L.multigrid = std::make_unique<Multigrid<VectorType>>(
       *L.level_matrices, *L.coarse, *L.transfer, L.smoother, L.smoother, L.min, L.max);
     L.preconditioner = std::make_unique<PreconditionMG<dim, VectorType, typename Levels::Transfer>>(

@@ -539,6 +539,14 @@ namespace viscofilm
     Vector<double>       cell_rhs(n_dofs);
     std::vector<double>  phi_old(n_dofs);
     std::vector<types::global_dof_index> local_dofs(n_dofs);
+    // A quadrature point lies in one sub-cell: the 2^dim shape functions of
+    // its nodes are the only ones not zero there (value and gradient).
+    std::vector<std::vector<unsigned int>> support(quadrature.size());
+    for (unsigned int q = 0; q < quadrature.size(); ++q)
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        if (sub_cells.shape_value(i, quadrature.point(q)) != 0 ||
+            sub_cells.shape_grad(i, quadrature.point(q)).norm() != 0)
+          support[q].push_back(i);
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -551,15 +559,15 @@ namespace viscofilm
               // D φ^n (eq. 3.45) from the sub-cells' interpolant: >= 0 where
               // the nodal values are.
               double phi = 0;
-              for (unsigned int i = 0; i < n_dofs; ++i)
+              for (const unsigned int i : support[q])
                 phi += phi_old[i] * values.shape_value(i, q);
               const double kappa = time_step * diffusion * std::max(phi, 0.0);
-              for (unsigned int i = 0; i < n_dofs; ++i)
+              for (const unsigned int i : support[q])
                 {
                   const double lumped_mass = values.shape_value(i, q) * values.JxW(q);
                   cell_matrix(i, i) += lumped_mass;
                   cell_rhs(i) += lumped_mass * phi_old[i];
-                  for (unsigned int j = 0; j < n_dofs; ++j)
+                  for (const unsigned int j : support[q])
                     cell_matrix(i, j) += kappa *
                                          (values.shape_grad(i, q) * values.shape_grad(j, q)) *
                                          values.JxW(q);
