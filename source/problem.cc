@@ -311,7 +311,7 @@ namespace viscofilm
 
   template <int dim>
   unsigned int
-  Problem<dim>::solve_stokes(const double time)
+  Problem<dim>::solve_stokes(const double time, const bool predictor)
   {
     typename StokesSolver<dim>::Coefficients coefficients{
       time,
@@ -327,7 +327,7 @@ namespace viscofilm
     unsigned int iterations;
     {
       TimerOutput::Scope t(*computing_timer, "solve stokes");
-      iterations = stokes.solve();
+      iterations = stokes.solve(predictor);
     }
     return iterations;
   }
@@ -393,7 +393,7 @@ namespace viscofilm
     for (unsigned int l = 1; l <= max_picard; ++l)
       {
         const TrilinosWrappers::MPI::BlockVector previous = stokes.solution();
-        const unsigned int iterations = solve_stokes(time);
+        const unsigned int iterations = solve_stokes(time, l < max_picard);
         report.stokes_iterations +=
           (l > 1 ? "+" : "") + std::to_string(iterations);
         report.total_stokes_iterations += iterations;

@@ -320,7 +320,8 @@ namespace viscofilm
       solve(const TrilinosWrappers::MPI::BlockVector &rhs,
             const TrilinosWrappers::MPI::BlockVector &guess,
             const AffineConstraints<double> &         constraints,
-            TrilinosWrappers::MPI::BlockVector &      solution) override;
+            TrilinosWrappers::MPI::BlockVector &      solution,
+            double                                    tolerance) override;
 
       unsigned int
       n_preconditioner_builds() const override
@@ -670,7 +671,8 @@ namespace viscofilm
     BlockPreconditioned<dim>::solve(const TrilinosWrappers::MPI::BlockVector &rhs,
                                const TrilinosWrappers::MPI::BlockVector &guess,
                                const AffineConstraints<double> &         constraints,
-                               TrilinosWrappers::MPI::BlockVector &      solution)
+                               TrilinosWrappers::MPI::BlockVector &      solution,
+                               const double                              tolerance)
     {
       bool built = !preconditioner_is_current;
       if (built)
@@ -684,7 +686,7 @@ namespace viscofilm
 
       // FGMRES from `solution` with at most n_cheap cheap iterations, then
       // (if `go_on`) expensive ones; true if it converged.
-      const double target     = parameters.tolerance * rhs.l2_norm();
+      const double target     = tolerance * rhs.l2_norm();
       unsigned int iterations = 0;
       const auto   fgmres     = [&](const unsigned int n_cheap, const bool go_on) {
         for (const bool expensive : {false, true})

@@ -79,7 +79,8 @@ namespace viscofilm
       solve(const TrilinosWrappers::MPI::BlockVector &rhs,
             const TrilinosWrappers::MPI::BlockVector &guess,
             const AffineConstraints<double> &,
-            TrilinosWrappers::MPI::BlockVector &solution) override
+            TrilinosWrappers::MPI::BlockVector &solution,
+            const double                        tolerance) override
       {
         TrilinosWrappers::MPI::Vector b(owned, mpi_communicator);
         TrilinosWrappers::MPI::Vector x(owned, mpi_communicator);
@@ -90,7 +91,7 @@ namespace viscofilm
           }
         b.compress(VectorOperation::insert);
         x.compress(VectorOperation::insert);
-        const unsigned int iterations = solve_system(x, b);
+        const unsigned int iterations = solve_system(x, b, tolerance);
         for (const auto i : owned)
           solution(i) = x(i);
         solution.compress(VectorOperation::insert);
@@ -99,7 +100,9 @@ namespace viscofilm
 
     protected:
       virtual unsigned int
-      solve_system(TrilinosWrappers::MPI::Vector &x, const TrilinosWrappers::MPI::Vector &b) = 0;
+      solve_system(TrilinosWrappers::MPI::Vector &      x,
+                   const TrilinosWrappers::MPI::Vector &b,
+                   double                               tolerance) = 0;
 
       const typename StokesSolver<dim>::Parameters &parameters;
       TrilinosWrappers::SparseMatrix  matrix;
@@ -119,7 +122,9 @@ namespace viscofilm
 
     protected:
       unsigned int
-      solve_system(TrilinosWrappers::MPI::Vector &x, const TrilinosWrappers::MPI::Vector &b) override
+      solve_system(TrilinosWrappers::MPI::Vector &x,
+                   const TrilinosWrappers::MPI::Vector &b,
+                   double) override
       {
         SolverControl                  control(1, 0);
         TrilinosWrappers::SolverDirect solver(control);
@@ -138,13 +143,15 @@ namespace viscofilm
 
     protected:
       unsigned int
-      solve_system(TrilinosWrappers::MPI::Vector &x, const TrilinosWrappers::MPI::Vector &b) override
+      solve_system(TrilinosWrappers::MPI::Vector &      x,
+                   const TrilinosWrappers::MPI::Vector &b,
+                   const double                         tolerance) override
       {
         // The zero pressure diagonal needs the absolute diagonal shift
         // ilu_atol to factorise.
         TrilinosWrappers::PreconditionILU ilu;
         ilu.initialize(this->matrix, TrilinosWrappers::PreconditionILU::AdditionalData(0, 1e-8));
-        SolverControl control(this->parameters.max_iterations, this->parameters.tolerance * b.l2_norm());
+        SolverControl control(this->parameters.max_iterations, tolerance * b.l2_norm());
         TrilinosWrappers::SolverGMRES solver(
           control, TrilinosWrappers::SolverGMRES::AdditionalData(false, 100));
         try

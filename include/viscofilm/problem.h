@@ -107,8 +107,9 @@ namespace viscofilm
     /// advance); returns the linear solver's iterations.
     unsigned int
     advance_volume_fraction(const double k);
+    /// Assemble and solve (a @p predictor: StokesSolver::solve).
     unsigned int
-    solve_stokes(const double time);
+    solve_stokes(const double time, const bool predictor = false);
     void
     output_results(const unsigned int step, const double time, const bool last_step);
     void

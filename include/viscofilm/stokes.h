@@ -95,6 +95,7 @@ namespace viscofilm
 
       Method          method         = Method::block_preconditioned;
       double          tolerance      = 1e-8;
+      double          predictor_tolerance = 0; // 0: tolerance
       unsigned int    max_iterations = 1000;
       Averaging       averaging      = Averaging::none;
       PressureElement pressure_element = PressureElement::continuous;
@@ -188,10 +189,11 @@ namespace viscofilm
     void
     assemble(const Coefficients &coefficients);
 
-    /// Solve; returns the number of outer Krylov iterations (0 if direct).
-    /// Throws with the residual if the solver does not converge.
+    /// Solve (a @p predictor: to Predictor tolerance); returns the number
+    /// of outer Krylov iterations (0 if direct). Throws with the residual if
+    /// the solver does not converge.
     unsigned int
-    solve();
+    solve(bool predictor = false);
 
     /// u^n := current solution (Order = 2: u^{n-1} := u^n before), before
     /// the next time step.

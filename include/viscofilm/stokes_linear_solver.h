@@ -91,13 +91,15 @@ namespace viscofilm
     finish_matrix() = 0;
 
     /// Solve for @p solution (owned entries) from the first guess @p guess
-    /// (ghosted); returns the outer Krylov iterations (0 if direct). Throws
-    /// with the residual if it does not converge.
+    /// (ghosted) to the relative residual @p tolerance; returns the outer
+    /// Krylov iterations (0 if direct). Throws with the residual if it does
+    /// not converge.
     virtual unsigned int
     solve(const TrilinosWrappers::MPI::BlockVector &rhs,
           const TrilinosWrappers::MPI::BlockVector &guess,
           const AffineConstraints<double> &         constraints,
-          TrilinosWrappers::MPI::BlockVector &      solution) = 0;
+          TrilinosWrappers::MPI::BlockVector &      solution,
+          double                                    tolerance) = 0;
 
     /// Statistics of the velocity AMG (block preconditioned; 0 otherwise).
     virtual unsigned int
