@@ -2,7 +2,7 @@
 """Critical flow (issue 14): for each biofilm profile, the smallest inflow
 strength U_max that detaches a given fraction of the biofilm, by bisection.
 
-Each run is the thesis' case (prm/default.prm: Table 4.1, Poiseuille inflow
+Each run is the thesis' case (prm/thesis.prm: Table 4.1, Poiseuille inflow
 U_max 4y(1-y) ramped up over T_ramp) with the profile as initial φ, the inflow
 held at U_max after the ramp, on a coarse mesh for a short time, and
 Detachment/Release on (doc/detachment.md). Its detached fraction is
@@ -139,7 +139,7 @@ class Runner:
             o = self.options
             k = 0.1 / 2 ** o.refinement
             with open(os.path.join(directory, "run.prm"), "w") as f:
-                f.write(RUN_PRM.format(default=os.path.join(REPOSITORY, "prm", "default.prm"),
+                f.write(RUN_PRM.format(default=os.path.join(REPOSITORY, "prm", "thesis.prm"),
                                        refinement=o.refinement, time_step=k, steps=o.steps,
                                        umax=umax, profile=profile, criterion=o.criterion,
                                        strength=o.strength, duration=o.duration))

@@ -1,7 +1,7 @@
 """Read a viscofilm run directory: solution.xdmf + solution-NNNNN.h5 snapshots,
 statistics.csv and probes.csv.
 
-    run = Run("output-default")
+    run = Run("output-thesis")
     snap = run.load(run.nearest_snapshot(step=100))
     snap.fields["u"], snap.triangulation, snap.step, snap.time
     stats = run.statistics()          # {"time": array, "max_velocity": array, ...}

@@ -17,7 +17,7 @@ viscofilm, source, workdir = sys.argv[1:4]
 shutil.rmtree(workdir, ignore_errors=True)
 os.makedirs(workdir)
 with open(os.path.join(workdir, "small.prm"), "w") as f:
-    f.write("include %s/prm/default.prm\n"
+    f.write("include %s/prm/thesis.prm\n"
             "subsection Geometry\n  set Initial global refinement = 3\nend\n"
             "subsection Time stepping\n  set Number of steps = 3\nend\n"
             "subsection Output\n  set Directory = run\n  set Interval = 1\nend\n" % source)
