@@ -393,7 +393,9 @@ namespace viscofilm
     for (unsigned int l = 1; l <= max_picard; ++l)
       {
         const TrilinosWrappers::MPI::BlockVector previous = stokes.solution();
-        const unsigned int iterations = solve_stokes(time, l < max_picard);
+        // The first iterate is never the loop's last (it iterates at least
+        // twice, below): its solve may be a predictor's.
+        const unsigned int iterations = solve_stokes(time, l == 1 && max_picard > 1);
         report.stokes_iterations +=
           (l > 1 ? "+" : "") + std::to_string(iterations);
         report.total_stokes_iterations += iterations;

@@ -57,17 +57,16 @@ namespace viscofilm
     prm.declare_entry("Predictor tolerance",
                       "0",
                       Patterns::Double(0, 1),
-                      "The relative residual reduction of the solves of all "
-                      "Picard iterations but the last one allowed (Time "
-                      "stepping/Maximum Picard iterations), when it is "
-                      "larger than Tolerance; 0: Tolerance for every solve. "
-                      "With Maximum Picard iterations = 2 at Order 2 the "
-                      "first solve is a predictor whose u reaches the answer "
-                      "only through the φ and τ of the second: 1e-4 there "
-                      "saves a third of the FGMRES iterations "
-                      "(doc/performance.md). In a loop that stops on the "
-                      "Picard tolerance it is inexact Picard, measured not "
-                      "to pay.");
+                      "The relative residual reduction of the first Picard "
+                      "iteration's solve in each step, when it is larger "
+                      "than Tolerance (the loop always iterates at least "
+                      "twice, so that solve is never its last); 0: "
+                      "Tolerance for every solve. With Maximum Picard "
+                      "iterations = 2 at Order 2 the first solve is a "
+                      "predictor whose u reaches the answer only through "
+                      "the φ and τ of the second: 1e-4 there saves a third "
+                      "of the FGMRES iterations at the same accuracy "
+                      "(doc/performance.md, prm/default.prm).");
     prm.declare_entry("Maximum iterations",
                       "1000",
                       Patterns::Integer(1),
