@@ -296,7 +296,7 @@ namespace viscofilm
           // The lower triangle of the symmetric (m u, v) + (2η D(u), D(v)) −
           // (p, ∇·v) − (∇·u, q), mirrored below; a shape function has one
           // non-zero component, so the terms a pair cannot have are skipped
-          // (in 3D a third of the assembly's time).
+          // (the 3D assembly in a third of the time, doc/performance.md).
           const double two_eta = 2 * viscosity[q];
           for (unsigned int i = 0; i < dofs_per_cell && need_matrix; ++i)
             {
