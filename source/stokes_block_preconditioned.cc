@@ -361,6 +361,8 @@ namespace viscofilm
       const Model &                   model;
       const BoundaryConditions<dim> & boundary_conditions;
       const DoFHandler<dim> *         dofs = nullptr;
+      /// The pressure shape functions of a cell (local indices).
+      std::vector<unsigned int> pressure_dofs;
       MPI_Comm                        mpi_communicator = MPI_COMM_SELF;
 
       TrilinosWrappers::BlockSparseMatrix system_matrix;
@@ -419,6 +421,10 @@ namespace viscofilm
     {
       this->dofs       = &dofs;
       mpi_communicator = dofs.get_communicator();
+      pressure_dofs.clear();
+      for (unsigned int k = 0; k < dofs.get_fe().n_dofs_per_cell(); ++k)
+        if (dofs.get_fe().system_to_component_index(k).first == dim)
+          pressure_dofs.push_back(k);
       const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
 
       // The AMG refers to the matrix it was built from: drop it first.
@@ -512,10 +518,6 @@ namespace viscofilm
       // columns only, the others are zero.
       FullMatrix<double> &cell_mass = cell.preconditioner_matrix;
       cell_mass.reinit(dofs_per_cell, dofs_per_cell);
-      std::vector<unsigned int> pressure_dofs;
-      for (unsigned int k = 0; k < dofs_per_cell; ++k)
-        if (fe_values.get_fe().system_to_component_index(k).first == dim)
-          pressure_dofs.push_back(k);
       std::vector<double> phi_p(pressure_dofs.size());
       for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
         {
