@@ -67,31 +67,32 @@ namespace viscofilm
         // Pressure: −S z_p = r_p with S ≈ (1/η) M_p. A loose inner tolerance
         // suffices: the mass matrix is only an approximation of S anyway.
         {
+          const double norm = src.block(1).l2_norm();
           SolverControl control(parameters.schur_inner_iterations,
-                                parameters.schur_inner_tolerance *
-                                  src.block(1).l2_norm());
+                                parameters.schur_inner_tolerance * norm);
           SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
           dst.block(1) = 0;
-          if (src.block(1).l2_norm() > 0)
+          if (norm > 0)
             cg.solve(weighted_mass, dst.block(1), src.block(1), mass_jacobi);
           dst.block(1) *= -1.0;
         }
         // Velocity: A z_u = r_u − B^T z_p.
         {
-          TrilinosWrappers::MPI::Vector rhs(src.block(0));
-          system_matrix.block(0, 1).vmult(rhs, dst.block(1));
-          rhs.sadd(-1.0, src.block(0));
+          if (velocity_rhs.size() != src.block(0).size())
+            velocity_rhs.reinit(src.block(0), true);
+          system_matrix.block(0, 1).vmult(velocity_rhs, dst.block(1));
+          velocity_rhs.sadd(-1.0, src.block(0));
           if (expensive)
             {
               SolverControl control(parameters.velocity_inner_iterations,
                                     parameters.velocity_inner_tolerance *
-                                      rhs.l2_norm());
+                                      velocity_rhs.l2_norm());
               SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
               dst.block(0) = 0;
-              cg.solve(system_matrix.block(0, 0), dst.block(0), rhs, velocity_amg);
+              cg.solve(system_matrix.block(0, 0), dst.block(0), velocity_rhs, velocity_amg);
             }
           else
-            velocity_amg.vmult(dst.block(0), rhs);
+            velocity_amg.vmult(dst.block(0), velocity_rhs);
         }
       }
 
@@ -102,6 +103,9 @@ namespace viscofilm
       const TrilinosWrappers::PreconditionJacobi &mass_jacobi;
       const typename StokesSolver<dim>::Parameters & parameters;
       const bool                                  expensive;
+      /// The velocity block's right-hand side, kept between calls (a new
+      /// vector per call costs its allocation every outer iteration).
+      mutable TrilinosWrappers::MPI::Vector velocity_rhs;
     };
 
 
@@ -350,6 +354,13 @@ namespace viscofilm
                StokesSolver<dim>::VelocityPreconditioner::gmg;
       }
 
+      /// Whether the velocity AMG is built from the Q1 sub-cell matrix.
+      bool
+      uses_subcell_matrix() const
+      {
+        return !geometric_multigrid() && parameters.amg_matrix != AMGMatrix::q2;
+      }
+
       /// Whether a velocity preconditioner was built for this mesh.
       bool
       has_velocity_preconditioner() const
@@ -369,10 +380,11 @@ namespace viscofilm
       TrilinosWrappers::BlockSparseMatrix preconditioner_matrix; // (1/η) M_p
       /// The velocity block with Q1 on sub-cells (AMG matrix = Q1 sub-cells
       /// …) and its coupling groups (subcell_groups()). It serves only to
-      /// build the AMG, so it is assembled only when the AMG is built
-      /// (assemble_subcell_matrix()), from what the last matrix assembly
-      /// recorded of each cell: its φ cell and mean elastic viscosity, φ and
-      /// the mass coefficient.
+      /// build the AMG, so it is assembled only for a build
+      /// (assemble_subcell_matrix()): at the end of the matrix assembly that
+      /// decides on one (finish_matrix()), or when a solve finds a kept AMG
+      /// too weak; from what that assembly recorded of each cell: its φ cell
+      /// and mean elastic viscosity, φ and the mass coefficient.
       TrilinosWrappers::SparseMatrix         subcell_matrix;
       std::vector<std::vector<unsigned int>> groups;
       struct SubcellSource
@@ -551,7 +563,7 @@ namespace viscofilm
           multigrid->set_cell_viscosity(cell.cell, viscosity, cell.JxW);
           mass_coefficient = cell.mass_coefficient;
         }
-      else if (parameters.amg_matrix != AMGMatrix::q2)
+      else if (uses_subcell_matrix())
         {
           subcell_sources.push_back(
             {cell.cell,
@@ -604,6 +616,10 @@ namespace viscofilm
         {
           preconditioner_is_current = false;
           viscosity_at_build.swap(viscosity_now);
+          // A matrix for the preconditioner belongs to the assembly (as
+          // step-55's does), not to the solve that builds the AMG from it.
+          if (uses_subcell_matrix())
+            assemble_subcell_matrix();
         }
     }
 
@@ -658,8 +674,6 @@ namespace viscofilm
       amg_data.aggregation_threshold = parameters.amg_aggregation_threshold;
       amg_data.w_cycle               = parameters.amg_w_cycle;
       amg_data.n_cycles              = parameters.amg_cycles;
-      if (parameters.amg_matrix != AMGMatrix::q2)
-        assemble_subcell_matrix();
       velocity_amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
       velocity_amg->initialize(parameters.amg_matrix == AMGMatrix::q2 ?
                                  system_matrix.block(0, 0) :
@@ -750,6 +764,8 @@ namespace viscofilm
             {
               if (!built)
                 {
+                  if (uses_subcell_matrix())
+                    assemble_subcell_matrix();
                   build_preconditioner();
                   built = true;
                 }
