@@ -1,0 +1,103 @@
+#!/usr/bin/python3
+"""benchmarks/cylinder/stress_growth.py -- where the elastic stress of a
+cylinder run changes between two of its HDF5 snapshots (doc/verification.md,
+"Where the late rise comes from").
+
+Usage:  benchmarks/cylinder/stress_growth.py RUN_DIRECTORY [--from STEP] [--to STEP]
+                                             [--count N]
+
+RUN_DIRECTORY holds a run's solution-NNNNN.h5 (Output/Interval > 0) and its
+statistics.csv. Printed: K (force_x_Cylinder) at the snapshots; the N nodes
+(default 8) where a component of tau changes most from snapshot --from
+(default: the second) to --to (default: the last), with their distance r
+from the cylinder's centre (the origin) and angle; and per snapshot the
+largest tau_xx on the wake's centreline (y = 0, x > 1) and the largest tau_yy
+on the upstream centreline (x < -1), the two stagnation streamlines.
+Needs Debian's python3-numpy and python3-h5py (run with /usr/bin/python3).
+"""
+
+import argparse
+import csv
+import glob
+import math
+import os
+import sys
+
+try:
+    import h5py
+    import numpy as np
+except ImportError as error:
+    sys.exit("stress_growth.py needs Debian's python3-numpy and python3-h5py "
+             "(run it with /usr/bin/python3): %s" % error)
+
+COMPONENTS = ("tau_xx", "tau_xy", "tau_yy")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("directory")
+    parser.add_argument("--from", dest="first", type=int, default=None)
+    parser.add_argument("--to", dest="last", type=int, default=None)
+    parser.add_argument("--count", type=int, default=8)
+    arguments = parser.parse_args()
+
+    files = {int(os.path.basename(f)[9:14]): f
+             for f in glob.glob(os.path.join(arguments.directory, "solution-*.h5"))}
+    if len(files) < 2:
+        sys.exit("%s: fewer than two solution-NNNNN.h5 (set Output/Interval > 0)"
+                 % arguments.directory)
+    steps = sorted(files)
+    first = arguments.first if arguments.first is not None else steps[1]
+    last = arguments.last if arguments.last is not None else steps[-1]
+    for step in (first, last):
+        if step not in files:
+            sys.exit("no snapshot of step %d (there are: %s)"
+                     % (step, " ".join(map(str, steps))))
+
+    statistics = os.path.join(arguments.directory, "statistics.csv")
+    rows = {int(row["step"]): row for row in csv.DictReader(open(statistics))}
+    force = next((key for key in next(iter(rows.values())) if key.startswith("force_x_")),
+                 None)
+
+    snapshots = {}
+    for step in steps:
+        with h5py.File(files[step], "r") as f:
+            snapshots[step] = {name: f[name][:, 0] for name in COMPONENTS}
+            nodes = f["nodes"][:, :2]
+    x, y = nodes[:, 0], nodes[:, 1]
+    r, angle = np.hypot(x, y), np.degrees(np.arctan2(y, x))
+    wake = (np.abs(y) < 1e-9) & (x > 1)
+    upstream = (np.abs(y) < 1e-9) & (x < -1)
+
+    print("# step time K max_tau_xx_wake_centreline(x) max_tau_yy_upstream_centreline(x)")
+    for step in steps:
+        s = snapshots[step]
+        i = np.flatnonzero(wake)[np.argmax(s["tau_xx"][wake])]
+        j = np.flatnonzero(upstream)[np.argmax(s["tau_yy"][upstream])]
+        row = rows.get(step, {})
+        print("%5d %7.3f %9.3f %8.2f (%.3f) %8.2f (%.3f)"
+              % (step, float(row.get("time", math.nan)),
+                 float(row.get(force, math.nan)) if force else math.nan,
+                 s["tau_xx"][i], x[i], s["tau_yy"][j], x[j]))
+
+    change = np.max([np.abs(snapshots[last][c] - snapshots[first][c]) for c in COMPONENTS],
+                    axis=0)
+    print("# the %d largest changes of a component of tau from step %d to %d"
+          % (arguments.count, first, last))
+    print("# x y r angle " + " ".join("%s(%d) %s(%d)" % (c, first, c, last) for c in COMPONENTS))
+    shown = set()
+    for i in np.argsort(-change):
+        key = (round(x[i], 6), round(y[i], 6))
+        if key in shown:  # the snapshots repeat nodes shared by cells
+            continue
+        shown.add(key)
+        print("%7.3f %7.3f %6.3f %7.2f " % (x[i], y[i], r[i], angle[i]) +
+              " ".join("%8.2f %8.2f" % (snapshots[first][c][i], snapshots[last][c][i])
+                       for c in COMPONENTS))
+        if len(shown) == arguments.count:
+            break
+
+
+if __name__ == "__main__":
+    main()
