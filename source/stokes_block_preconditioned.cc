@@ -58,6 +58,8 @@ namespace viscofilm
         , mass_jacobi(mass_jacobi)
         , parameters(parameters)
         , expensive(expensive)
+        , velocity_rhs(system_matrix.block(0, 1).locally_owned_range_indices(),
+                       system_matrix.get_mpi_communicator())
       {}
 
       void
@@ -78,8 +80,6 @@ namespace viscofilm
         }
         // Velocity: A z_u = r_u − B^T z_p.
         {
-          if (velocity_rhs.size() != src.block(0).size())
-            velocity_rhs.reinit(src.block(0), true);
           system_matrix.block(0, 1).vmult(velocity_rhs, dst.block(1));
           velocity_rhs.sadd(-1.0, src.block(0));
           if (expensive)
@@ -103,8 +103,8 @@ namespace viscofilm
       const TrilinosWrappers::PreconditionJacobi &mass_jacobi;
       const typename StokesSolver<dim>::Parameters & parameters;
       const bool                                  expensive;
-      /// The velocity block's right-hand side, kept between calls (a new
-      /// vector per call costs its allocation every outer iteration).
+      /// The velocity block's right-hand side, one vector for all calls (a
+      /// new one per call costs its allocation every outer iteration).
       mutable TrilinosWrappers::MPI::Vector velocity_rhs;
     };
 
