@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """benchmarks/cylinder/time_average.py -- the drag of a cylinder run that
 cycles instead of settling: K's mean over whole periods (doc/verification.md,
-"Wi >= 0.6 on wake-refined meshes").
+"Wider bands, the wake refined, and the cycle's mean").
 
 Usage:  benchmarks/cylinder/time_average.py RUN_DIRECTORY... [--from T] [--published K]
                                               [--label NAME]... [--plot FILE.png]
@@ -11,29 +11,31 @@ rows with time >= T (default 10): K's range, the times at which K - mean
 crosses zero upwards, and those at which it crosses downwards; of the two,
 the set spanning more whole periods gives the period (the mean distance
 between its crossings) and the mean of K over those whole periods (the mean
-over all rows from T if neither set has two crossings). With --published the relative errors are printed too.
-With --plot, K(t) of every run (labelled by --label, one per directory, or
+over all rows from T if neither set has two crossings). With --published the
+relative errors are printed too. With --plot, K(t) of every run (labelled by --label, one per directory, or
 by the directory's name) with its mean and the published K is drawn into
 FILE.png; that needs Debian's python3-matplotlib (/usr/bin/python3).
 """
 
 import argparse
-import csv
 import os
 import sys
 
+sys.dont_write_bytecode = True  # importing run.py leaves no __pycache__ here
+from run import die, force_column, read_csv  # noqa: E402  benchmarks/cylinder/run.py
+
 
 def read(directory):
+    """(time, K) of every row of the run's statistics.csv."""
     path = os.path.join(directory, "statistics.csv")
     try:
-        with open(path) as f:
-            rows = list(csv.DictReader(f))
-    except OSError as error:
-        sys.exit("time_average.py: cannot read %s: %s" % (path, error))
-    key = next((k for k in (rows[0] if rows else {}) if k.lower() == "force_x_cylinder"), None)
-    if key is None:
-        sys.exit("time_average.py: %s has no column force_x_Cylinder" % path)
-    return [(float(row["time"]), float(row[key])) for row in rows if row[key]]
+        rows = read_csv(path)
+    except (OSError, ValueError) as error:
+        die("cannot read %s: %s" % (path, error))
+    if not rows:
+        die("%s has no rows" % path)
+    key = force_column(rows[0])
+    return [(row["time"], row[key]) for row in rows]
 
 
 def crossings(series, level, sign):
@@ -67,13 +69,16 @@ def main():
     parser.add_argument("--plot", default=None)
     arguments = parser.parse_args()
     if arguments.label and len(arguments.label) != len(arguments.directories):
-        sys.exit("time_average.py: give one --label per directory (%d directories, %d labels)"
-                 % (len(arguments.directories), len(arguments.label)))
+        die("give one --label per directory (%d directories, %d labels)"
+            % (len(arguments.directories), len(arguments.label)))
+    labels = arguments.label or [os.path.basename(os.path.normpath(d))
+                                 for d in arguments.directories]
     curves = []
 
     print("# run  t_from t_end  K_min K_max  period  K_mean(whole periods) [error]")
-    for directory in arguments.directories:
-        series = [(t, k) for t, k in read(directory) if t >= arguments.start]
+    for directory, label in zip(arguments.directories, labels):
+        whole = read(directory)
+        series = [(t, k) for t, k in whole if t >= arguments.start]
         if len(series) < 3:
             print("%s: fewer than three rows from t = %g" % (directory, arguments.start))
             continue
@@ -92,9 +97,7 @@ def main():
         print("%s  %.2f %.2f  %.3f %.3f  %.2f  %.3f (%s)%s"
               % (directory, series[0][0], series[-1][0], min(values), max(values), period,
                  mean, window, error))
-        label = (arguments.label[len(curves)] if arguments.label
-                 else os.path.basename(os.path.normpath(directory)))
-        curves.append((label, read(directory), mean))
+        curves.append((label, whole, mean))
     if arguments.plot:
         plot(curves, arguments.published, arguments.plot)
 
@@ -105,8 +108,8 @@ def plot(curves, published, path):
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError as error:
-        sys.exit("time_average.py --plot needs Debian's python3-matplotlib "
-                 "(run it with /usr/bin/python3): %s" % error)
+        die("--plot needs Debian's python3-matplotlib (run it with /usr/bin/python3): %s"
+            % error)
     figure, axes = plt.subplots(figsize=(7, 4))
     for (label, series, mean), colour in zip(curves, plt.rcParams["axes.prop_cycle"].by_key()["color"]):
         axes.plot([t for t, _ in series], [k for _, k in series], color=colour,
