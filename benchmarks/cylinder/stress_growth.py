@@ -60,11 +60,20 @@ def main():
     force = next((key for key in next(iter(rows.values())) if key.startswith("force_x_")),
                  None)
 
-    snapshots = {}
+    # A snapshot lists each cell's nodes in the order of the ranks that
+    # wrote it, and a resumed run may partition the mesh otherwise: so each
+    # snapshot's nodes are taken once each, sorted by their coordinates.
+    snapshots, nodes = {}, None
     for step in steps:
         with h5py.File(files[step], "r") as f:
-            snapshots[step] = {name: f[name][:, 0] for name in COMPONENTS}
-            nodes = f["nodes"][:, :2]
+            own, first_of = np.unique(np.round(f["nodes"][:, :2], 9), axis=0,
+                                      return_index=True)
+            snapshots[step] = {name: f[name][:, 0][first_of] for name in COMPONENTS}
+        if nodes is None:
+            nodes = own
+        elif not np.array_equal(own, nodes):
+            sys.exit("%s: its mesh is not that of %s (the snapshots of one run on "
+                     "one fixed mesh are compared)" % (files[step], files[steps[0]]))
     x, y = nodes[:, 0], nodes[:, 1]
     r, angle = np.hypot(x, y), np.degrees(np.arctan2(y, x))
     wake = (np.abs(y) < 1e-9) & (x > 1)
@@ -86,17 +95,10 @@ def main():
     print("# the %d largest changes of a component of tau from step %d to %d"
           % (arguments.count, first, last))
     print("# x y r angle " + " ".join("%s(%d) %s(%d)" % (c, first, c, last) for c in COMPONENTS))
-    shown = set()
-    for i in np.argsort(-change):
-        key = (round(x[i], 6), round(y[i], 6))
-        if key in shown:  # the snapshots repeat nodes shared by cells
-            continue
-        shown.add(key)
+    for i in np.argsort(-change)[:arguments.count]:
         print("%7.3f %7.3f %6.3f %7.2f " % (x[i], y[i], r[i], angle[i]) +
               " ".join("%8.2f %8.2f" % (snapshots[first][c][i], snapshots[last][c][i])
                        for c in COMPONENTS))
-        if len(shown) == arguments.count:
-            break
 
 
 if __name__ == "__main__":
