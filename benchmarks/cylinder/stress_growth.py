@@ -13,22 +13,21 @@ statistics.csv. Printed: K (force_x_Cylinder) at the snapshots; the N nodes
 from the cylinder's centre (the origin) and angle; and per snapshot the
 largest tau_xx on the wake's centreline (y = 0, x > 1) and the largest tau_yy
 on the upstream centreline (x < -1), the two stagnation streamlines.
-Needs Debian's python3-numpy and python3-h5py (run with /usr/bin/python3).
+Needs Debian's python3-numpy, python3-h5py and python3-matplotlib (run with
+/usr/bin/python3).
 """
 
 import argparse
 import csv
-import glob
 import math
 import os
 import sys
 
-try:
-    import h5py
-    import numpy as np
-except ImportError as error:
-    sys.exit("stress_growth.py needs Debian's python3-numpy and python3-h5py "
-             "(run it with /usr/bin/python3): %s" % error)
+sys.dont_write_bytecode = True
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir,
+                                os.pardir, "postprocess"))
+# says which packages are missing, if any
+from viscofilm_io import Run, UserError, main_guard, np  # noqa: E402
 
 COMPONENTS = ("tau_xx", "tau_xy", "tau_yy")
 
@@ -42,16 +41,16 @@ def main():
     parser.add_argument("--count", type=int, default=8)
     arguments = parser.parse_args()
 
-    files = {int(os.path.basename(f)[9:14]): f
-             for f in glob.glob(os.path.join(arguments.directory, "solution-*.h5"))}
-    if len(files) < 2:
-        sys.exit("%s: fewer than two solution-NNNNN.h5 (set Output/Interval > 0)"
+    run = Run(arguments.directory)
+    infos = {info.step: info for info in run.snapshots}
+    if len(infos) < 2:
+        sys.exit("%s: fewer than two snapshots in its solution.xdmf (set Output/Interval > 0)"
                  % arguments.directory)
-    steps = sorted(files)
+    steps = sorted(infos)
     first = arguments.first if arguments.first is not None else steps[1]
     last = arguments.last if arguments.last is not None else steps[-1]
     for step in (first, last):
-        if step not in files:
+        if step not in infos:
             sys.exit("no snapshot of step %d (there are: %s)"
                      % (step, " ".join(map(str, steps))))
 
@@ -60,20 +59,21 @@ def main():
     force = next((key for key in next(iter(rows.values())) if key.startswith("force_x_")),
                  None)
 
-    # A snapshot lists each cell's nodes in the order of the ranks that
-    # wrote it, and a resumed run may partition the mesh otherwise: so each
-    # snapshot's nodes are taken once each, sorted by their coordinates.
+    # A snapshot lists its nodes in the order of the ranks that wrote it, and
+    # a resumed run may partition the mesh otherwise: so each snapshot's
+    # nodes are sorted by their coordinates.
     snapshots, nodes = {}, None
     for step in steps:
-        with h5py.File(files[step], "r") as f:
-            own, first_of = np.unique(np.round(f["nodes"][:, :2], 9), axis=0,
-                                      return_index=True)
-            snapshots[step] = {name: f[name][:, 0][first_of] for name in COMPONENTS}
+        snapshot = run.load(infos[step])
+        order = np.lexsort(np.round(snapshot.nodes, 9).T[::-1])
         if nodes is None:
-            nodes = own
-        elif not np.array_equal(own, nodes):
-            sys.exit("%s: its mesh is not that of %s (the snapshots of one run on "
-                     "one fixed mesh are compared)" % (files[step], files[steps[0]]))
+            nodes = snapshot.nodes[order]
+        elif (snapshot.nodes.shape != nodes.shape or
+              not np.allclose(snapshot.nodes[order], nodes, atol=1e-9)):
+            raise UserError("%s: its mesh is not that of %s (the snapshots of one run on "
+                            "one fixed mesh are compared)"
+                            % (infos[step].h5_file, infos[steps[0]].h5_file))
+        snapshots[step] = {name: snapshot.field(name)[order] for name in COMPONENTS}
     x, y = nodes[:, 0], nodes[:, 1]
     r, angle = np.hypot(x, y), np.degrees(np.arctan2(y, x))
     wake = (np.abs(y) < 1e-9) & (x > 1)
@@ -102,4 +102,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    main_guard(main)
