@@ -6,8 +6,9 @@ cylinder run changes between two of its HDF5 snapshots (doc/verification.md,
 Usage:  benchmarks/cylinder/stress_growth.py RUN_DIRECTORY [--from STEP] [--to STEP]
                                              [--count N]
 
-RUN_DIRECTORY holds a run's solution-NNNNN.h5 (Output/Interval > 0) and its
-statistics.csv. Printed: K (force_x_Cylinder) at the snapshots; the N nodes
+RUN_DIRECTORY holds a run's snapshots (solution.xdmf and solution-NNNNN.h5,
+Output/Interval > 0) and its statistics.csv. Printed: K (force_x_Cylinder)
+at the snapshots; the N nodes
 (default 8) where a component of tau changes most from snapshot --from
 (default: the second) to --to (default: the last), with their distance r
 from the cylinder's centre (the origin) and angle; and per snapshot the
