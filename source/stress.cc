@@ -127,6 +127,18 @@ namespace viscofilm
                       "positive definite, use the multilinear interpolant on the "
                       "Q1 sub-cell of the Q2 nodes instead (a convex "
                       "combination of nodal values, so positive definite).");
+    prm.declare_entry("Foot interpolation",
+                      "conformation",
+                      Patterns::Selection("conformation|logarithm"),
+                      "What is interpolated at a departure foot. conformation: "
+                      "the Q2 interpolant of c (the thesis). logarithm: the Q2 "
+                      "interpolant of log c at the foot, exponentiated, as in "
+                      "the log-conformation formulation (Fattal & Kupferman "
+                      "2004): positive definite by construction (Positivity "
+                      "safe feet does not apply), and exact where c varies "
+                      "exponentially, as in the narrow stress layers and wake "
+                      "strands of high Wi, which polynomials of c resolve "
+                      "poorly.");
     prm.declare_entry("Positivity floor",
                       "1e-6",
                       Patterns::Double(0),
@@ -171,6 +183,7 @@ namespace viscofilm
     prm.enter_subsection("Stress");
     discontinuous        = (prm.get("Element") == "discontinuous");
     positivity_safe_feet = prm.get_bool("Positivity safe feet");
+    logarithm_at_feet    = (prm.get("Foot interpolation") == "logarithm");
     cayley               = (prm.get("Deformation gradient") == "Cayley");
     positivity_floor     = prm.get_double("Positivity floor");
     wall_shear           = (prm.get("Wall velocity gradient") == "no-slip shear");
@@ -380,7 +393,9 @@ namespace viscofilm
     // c^n at the feet, on whichever rank owns them.
     const MPI_Comm     comm      = triangulation.get_communicator();
     const double       this_rank = Utilities::MPI::this_mpi_process(comm);
-    const bool         guard     = parameters.positivity_safe_feet && model.relaxed_conformation() > 0;
+    const bool         logarithm = parameters.logarithm_at_feet;
+    const bool         guard = !logarithm && parameters.positivity_safe_feet && model.relaxed_conformation() > 0;
+    const unsigned int n_cell_nodes = fe.base_element(0).n_dofs_per_cell();
     unsigned int       fixes     = 0;
     FEPointEvaluation<n_symmetric_components<dim>, dim> conformation(this->mapping(), fe, update_values, 0);
     std::vector<double>     cell_values(fe.n_dofs_per_cell());
@@ -392,12 +407,35 @@ namespace viscofilm
           const ArrayView<const Point<dim>> &             unit_points,
           const ArrayView<std::array<double, n_values>> & values) {
         cell_of(dofs, cell)->get_dof_values(old_solution, cell_values.begin(), cell_values.end());
+        if (logarithm)
+          for (unsigned int node = 0; node < n_cell_nodes; ++node)
+            {
+              SymmetricTensor<2, dim> c;
+              for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
+                {
+                  const auto [i, j] = symmetric_component<dim>(k);
+                  c[i][j]           = cell_values[fe.component_to_system_index(k, node)];
+                }
+              // An eigenvalue the floor let reach 0 maps to a finite log.
+              const SymmetricTensor<2, dim> log_c = symmetric_function(c, [](const double x) {
+                return std::log(std::max(x, std::numeric_limits<double>::min()));
+              });
+              for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
+                cell_values[fe.component_to_system_index(k, node)] = stored_component(log_c, k);
+            }
         conformation.reinit(cell, unit_points);
         conformation.evaluate(cell_values, EvaluationFlags::values);
         for (unsigned int q = 0; q < unit_points.size(); ++q)
           {
             Tensor<1, n_symmetric_components<dim>> c = conformation.get_value(q);
-            if (guard && smallest_eigenvalue(symmetric_tensor<dim>(c)) <= 0)
+            if (logarithm)
+              {
+                const SymmetricTensor<2, dim> exp_c = symmetric_function(
+                  symmetric_tensor<dim>(c), [](const double x) { return std::exp(x); });
+                for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
+                  c[k] = stored_component(exp_c, k);
+              }
+            else if (guard && smallest_eigenvalue(symmetric_tensor<dim>(c)) <= 0)
               {
                 // Multilinear interpolation on the Q1 sub-cell of the Q2 nodes.
                 const Point<dim> &p = unit_points[q];

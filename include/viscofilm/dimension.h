@@ -77,6 +77,18 @@ namespace viscofilm
     else
       return dealii::eigenvalues(t)[dim - 1]; // in descending order
   }
+
+  /// f(t) = Σ_i f(λ_i) v_i ⊗ v_i over the eigenpairs (λ_i, v_i) of a
+  /// symmetric tensor (log c and exp of it for Stress/Foot interpolation).
+  template <int dim, class ScalarFunction>
+  dealii::SymmetricTensor<2, dim>
+  symmetric_function(const dealii::SymmetricTensor<2, dim> &t, const ScalarFunction &f)
+  {
+    dealii::SymmetricTensor<2, dim> result;
+    for (const auto &[value, vector] : dealii::eigenvectors(t))
+      result += f(value) * dealii::symmetrize(dealii::outer_product(vector, vector));
+    return result;
+  }
 } // namespace viscofilm
 
 /// The explicit instantiations at the end of each .cc file: a class

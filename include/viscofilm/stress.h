@@ -57,6 +57,10 @@ namespace viscofilm
       /// Evaluate c at a foot on the Q1 sub-cells of the Q2 nodes where the
       /// Q2 interpolant is not positive definite.
       bool positivity_safe_feet = true;
+      /// Interpolate log c at a foot and take its exponential (Foot
+      /// interpolation = logarithm): positive definite by construction, and
+      /// exact for c varying exponentially along a Q2 cell.
+      bool logarithm_at_feet = false;
       /// E = (I − kΦ)^{-1} (the thesis, eq. 3.42) or the Cayley transform
       /// (I − kΦ/2)^{-1}(I + kΦ/2): second order, and exactly orthogonal in a
       /// rotation, so a co-rotating stress keeps its size.
