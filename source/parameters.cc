@@ -45,6 +45,14 @@ namespace viscofilm
                 "support periodic boundaries (its levels have no periodic "
                 "constraints); use Velocity preconditioner = AMG");
     stress.parse_parameters(prm);
+    // log c needs c positive definite, which it is only for a > 0 (a < 0
+    // shifts c by the negative ηp/(a Wi)).
+    check_input(!stress.logarithm_at_feet ||
+                  (model.slip_parameter > 0 && model.relaxed_conformation() > 0),
+                "Stress/Foot interpolation = logarithm needs a positive definite "
+                "conformation c: Model/Slip parameter > 0 (given " +
+                  to_text(model.slip_parameter) +
+                  ") and a polymer viscosity > 0; use Foot interpolation = conformation");
     departure_feet.parse_parameters(prm);
     stabilization.parse_parameters(prm);
     detachment.parse_parameters(prm, boundary_conditions);
