@@ -138,7 +138,8 @@ namespace viscofilm
                       "safe feet does not apply), and exact where c varies "
                       "exponentially, as in the narrow stress layers and wake "
                       "strands of high Wi, which polynomials of c resolve "
-                      "poorly.");
+                      "poorly. Needs Model/Slip parameter > 0 (c positive "
+                      "definite).");
     prm.declare_entry("Positivity floor",
                       "1e-6",
                       Patterns::Double(0),
