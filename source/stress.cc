@@ -48,6 +48,20 @@ namespace viscofilm
     }
 
 
+    /// The stored components of f(c), c given by its stored components
+    /// (symmetric_function: log c and exp for Stress/Foot interpolation).
+    template <int dim, class ScalarFunction>
+    Tensor<1, n_symmetric_components<dim>>
+    function_of_components(const Tensor<1, n_symmetric_components<dim>> &c, const ScalarFunction &f)
+    {
+      const SymmetricTensor<2, dim>          fc = symmetric_function(symmetric_tensor<dim>(c), f);
+      Tensor<1, n_symmetric_components<dim>> result;
+      for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
+        result[k] = stored_component(fc, k);
+      return result;
+    }
+
+
     /// τ = Model::stress(c, φ) as output fields; φ is evaluated at the
     /// output points only where τ depends on it (Rheology = phases).
     template <int dim>
@@ -411,18 +425,15 @@ namespace viscofilm
         if (logarithm)
           for (unsigned int node = 0; node < n_cell_nodes; ++node)
             {
-              SymmetricTensor<2, dim> c;
+              Tensor<1, n_symmetric_components<dim>> c;
               for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
-                {
-                  const auto [i, j] = symmetric_component<dim>(k);
-                  c[i][j]           = cell_values[fe.component_to_system_index(k, node)];
-                }
+                c[k] = cell_values[fe.component_to_system_index(k, node)];
               // An eigenvalue the floor let reach 0 maps to a finite log.
-              const SymmetricTensor<2, dim> log_c = symmetric_function(c, [](const double x) {
+              const auto log_c = function_of_components<dim>(c, [](const double x) {
                 return std::log(std::max(x, std::numeric_limits<double>::min()));
               });
               for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
-                cell_values[fe.component_to_system_index(k, node)] = stored_component(log_c, k);
+                cell_values[fe.component_to_system_index(k, node)] = log_c[k];
             }
         conformation.reinit(cell, unit_points);
         conformation.evaluate(cell_values, EvaluationFlags::values);
@@ -430,12 +441,7 @@ namespace viscofilm
           {
             Tensor<1, n_symmetric_components<dim>> c = conformation.get_value(q);
             if (logarithm)
-              {
-                const SymmetricTensor<2, dim> exp_c = symmetric_function(
-                  symmetric_tensor<dim>(c), [](const double x) { return std::exp(x); });
-                for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
-                  c[k] = stored_component(exp_c, k);
-              }
+              c = function_of_components<dim>(c, [](const double x) { return std::exp(x); });
             else if (guard && smallest_eigenvalue(symmetric_tensor<dim>(c)) <= 0)
               {
                 // Multilinear interpolation on the Q1 sub-cell of the Q2 nodes.
