@@ -50,6 +50,8 @@
 #include <viscofilm/dimension.h>
 #include <viscofilm/stokes_velocity_multigrid_levels.h>
 
+#include <algorithm>
+
 namespace
 {
   // Named explicitly: deal.II's default width is fixed in config.h, before
@@ -301,14 +303,6 @@ namespace viscofilm
 
   template <int dim>
   VelocityMultigridLevels<dim>::~VelocityMultigridLevels() = default;
-
-
-  template <int dim>
-  unsigned int
-  VelocityMultigridLevels<dim>::simd_width()
-  {
-    return Number::size();
-  }
 
 
   template <int dim>

@@ -20,9 +20,9 @@ namespace viscofilm
    * One V-cycle for (m u, v) + (2 η D(u), D(v)), the velocity block A of the
    * Stokes system, as its approximate inverse: Chebyshev smoothing (Jacobi)
    * with matrix-free Q2 operators on every level of the globally coarsened
-   * mesh sequence, CG with AMG on the coarse mesh. η is constant per cell
-   * on every level: the cell mean of the system's on the active mesh, the
-   * mean of the children's on coarser ones. Each level has the active
+   * mesh sequence, CG with AMG on the coarse mesh. η is the system's at the
+   * quadrature points on the active mesh and the mean of the children's
+   * cell means on coarser ones. Each level has the active
    * mesh's hanging-node and (homogeneous) velocity constraints, so every
    * boundary type is treated as in the system, periodic pairs excepted.
    */

@@ -43,16 +43,12 @@ namespace viscofilm
                             const unsigned int                              smoother_degree);
     ~VelocityMultigridLevels();
 
-    /// The doubles per SIMD lane this file was compiled for.
-    static unsigned int
-    simd_width();
-
     void
     initialize_dof_vector(const unsigned int level, VectorType &vector) const;
 
     /// The operators with @p viscosity and the mass coefficient @p mass
     /// (Res/k), their smoothers, the coarse solve and the V-cycle over
-    /// @p transfer (which lives as long as this object's build).
+    /// @p transfer, which must outlive the V-cycle.
     void
     build(const double                       mass,
           const Viscosity &                  viscosity,
