@@ -114,6 +114,20 @@ def run_case(binary, prm_text, directory, ranks, reuse=False, threads=None):
             "log": text, "cached": cached}
 
 
+def settings_text(settings):
+    """Parameter-file text of "Section/Subsection/Entry=value" strings (as the
+    scripts' --set takes them), each in its nested subsections."""
+    text = ""
+    for item in settings:
+        path, separator, value = item.partition("=")
+        *sections, entry = [part.strip() for part in path.split("/")]
+        if not separator or not sections:
+            die("--set needs SECTION/ENTRY=VALUE, got %r" % item)
+        text += ("".join("subsection %s\n" % s for s in sections) +
+                 "  set %s = %s\n" % (entry, value.strip()) + "end\n" * len(sections))
+    return text
+
+
 def timer_section(log_text, section):
     """Wall time [s] of a TimerOutput section in a run's log (0 if absent)."""
     match = re.search(r"^\| %s\s*\|\s*\d+\s*\|\s*([0-9.e+-]+)s" % re.escape(section),

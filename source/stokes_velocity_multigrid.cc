@@ -185,10 +185,13 @@ namespace viscofilm
   {
     Levels &L = *levels;
     // Coarser levels: the mean of the children's 2η (DG0 restriction sums
-    // them; so it does with ones, to count them).
+    // them; so it does with ones, to count them). The count starts from
+    // zero, not from the last build's means.
     for (unsigned int l = L.max; l > L.min; --l)
       {
-        VectorType ones(L.viscosity[l]), children(L.viscosity[l - 1]);
+        VectorType ones, children;
+        ones.reinit(L.viscosity[l]);
+        children.reinit(L.viscosity[l - 1]);
         ones = 1.0;
         ones.update_ghost_values();
         L.viscosity[l].update_ghost_values();
