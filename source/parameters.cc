@@ -43,7 +43,7 @@ namespace viscofilm
                   !boundary_conditions.has_periodic_pair(),
                 "Stokes solver/Preconditioner/Velocity preconditioner = GMG does not "
                 "support periodic boundaries (its levels have no periodic "
-                "constraints); use Velocity preconditioner = AMG");
+                "constraints); use Velocity preconditioner = AMG or auto");
     stress.parse_parameters(prm);
     // log c needs c positive definite, which it is only for a > 0 (a < 0
     // shifts c by the negative ηp/(a Wi)).

@@ -160,19 +160,26 @@ namespace viscofilm
                       "Default: Q1 sub-cells in 2D, Q1 sub-cells by component "
                       "in 3D, the faster in each (doc/performance.md).");
     prm.declare_entry("Velocity preconditioner",
-                      "AMG",
-                      Patterns::Selection("AMG|GMG"),
-                      "The velocity block's approximate inverse. AMG: Trilinos "
+                      "auto",
+                      Patterns::Selection("AMG|GMG|auto"),
+                      "The velocity block's approximate inverse: AMG, GMG or "
+                      "auto. AMG: Trilinos "
                       "ML on the AMG matrix (the AMG settings above). GMG: one "
                       "V-cycle of geometric multigrid on the globally coarsened "
                       "meshes, matrix-free Q2 operators with the system's "
                       "viscosity on the active mesh and cell means of it on "
                       "coarser ones, Chebyshev smoothing, CG with AMG on the "
                       "coarse mesh (doc/numerics.md); not with periodic "
-                      "boundaries. Half the FGMRES iterations of AMG, "
-                      "independent of the mesh; faster from about 1e5 Stokes "
-                      "dofs (0.7 x the AMG's time in 2D, 0.4 x in 3D), slower "
-                      "on small meshes (doc/performance.md).");
+                      "boundaries. Half the FGMRES iterations of AMG or fewer, "
+                      "independent of the mesh; faster on large meshes (in "
+                      "the transient default case 0.85 x the AMG's time at "
+                      "3.8e4 Stokes dofs and 0.78 x at 1.5e5 in 2D, 0.55 x on "
+                      "the adapted 3D mushroom), slower on small ones "
+                      "(1.06 x at 9.5e3 in 2D; doc/performance.md). auto: "
+                      "GMG from 2e4 Stokes dofs in 2D and 1e4 in 3D without "
+                      "periodic boundaries, else AMG, chosen anew at each "
+                      "mesh change (the log names it on the Mesh line and "
+                      "when an adapted mesh changes it).");
     prm.declare_entry("GMG smoother degree",
                       "4",
                       Patterns::Integer(1),
@@ -262,9 +269,10 @@ namespace viscofilm
     amg_matrix = (m == "Q2"           ? AMGMatrix::q2 :
                   m == "Q1 sub-cells" ? AMGMatrix::q1_subcells :
                                         AMGMatrix::q1_subcells_by_component);
-    velocity_preconditioner   = (prm.get("Velocity preconditioner") == "GMG" ?
-                                   VelocityPreconditioner::gmg :
-                                   VelocityPreconditioner::amg);
+    const std::string v = prm.get("Velocity preconditioner");
+    velocity_preconditioner = (v == "GMG" ? VelocityPreconditioner::gmg :
+                               v == "AMG" ? VelocityPreconditioner::amg :
+                                            VelocityPreconditioner::automatic);
     gmg_smoother_degree       = prm.get_integer("GMG smoother degree");
     velocity_inner_tolerance  = prm.get_double("Velocity inner tolerance");
     velocity_inner_iterations = prm.get_integer("Velocity inner iterations");
@@ -496,6 +504,14 @@ namespace viscofilm
   StokesSolver<dim>::n_preconditioner_builds() const
   {
     return linear_solver->n_preconditioner_builds();
+  }
+
+
+  template <int dim>
+  std::string
+  StokesSolver<dim>::velocity_preconditioner() const
+  {
+    return linear_solver->velocity_preconditioner();
   }
 
 

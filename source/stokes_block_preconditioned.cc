@@ -339,6 +339,12 @@ namespace viscofilm
         return viscosity_change;
       }
 
+      std::string
+      velocity_preconditioner() const override
+      {
+        return use_multigrid ? "GMG" : "AMG";
+      }
+
     private:
       void
       build_preconditioner();
@@ -347,11 +353,15 @@ namespace viscofilm
 
       using AMGMatrix = typename StokesSolver<dim>::AMGMatrix;
 
+      /// Velocity preconditioner = auto: GMG from this many Stokes dofs, where
+      /// its time per solve falls below the AMG's (doc/performance.md).
+      static constexpr types::global_dof_index automatic_multigrid_dofs =
+        (dim == 2 ? 20000 : 10000);
+
       bool
       geometric_multigrid() const
       {
-        return parameters.velocity_preconditioner ==
-               StokesSolver<dim>::VelocityPreconditioner::gmg;
+        return use_multigrid;
       }
 
       /// Whether the velocity AMG is built from the Q1 sub-cell matrix.
@@ -420,6 +430,10 @@ namespace viscofilm
       /// add_cell_matrix() hands it.
       std::unique_ptr<VelocityMultigrid<dim>>               multigrid;
       bool                                                  multigrid_built = false;
+      /// GMG on this mesh (Velocity preconditioner = GMG, or auto from
+      /// automatic_multigrid_dofs without periodic boundaries), else AMG;
+      /// decided in reinit().
+      bool use_multigrid = false;
       std::unique_ptr<TrilinosWrappers::PreconditionJacobi> mass_jacobi;
     };
 
@@ -442,6 +456,13 @@ namespace viscofilm
       // The AMG refers to the matrix it was built from: drop it first.
       velocity_amg.reset();
       multigrid_built = false;
+      using VelocityPreconditioner = typename StokesSolver<dim>::VelocityPreconditioner;
+      use_multigrid =
+        parameters.velocity_preconditioner == VelocityPreconditioner::gmg ||
+        (parameters.velocity_preconditioner == VelocityPreconditioner::automatic &&
+         !boundary_conditions.has_periodic_pair() && dofs.n_dofs() >= automatic_multigrid_dofs);
+      if (!use_multigrid)
+        multigrid.reset();
       mass_jacobi.reset();
       viscosity_at_build.clear();
       rebuild_requested = false;

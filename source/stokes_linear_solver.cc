@@ -29,6 +29,14 @@ namespace viscofilm
 
 
   template <int dim>
+  std::string
+  StokesLinearSolver<dim>::velocity_preconditioner() const
+  {
+    return "";
+  }
+
+
+  template <int dim>
   double
   StokesLinearSolver<dim>::viscosity_change_since_build() const
   {

@@ -75,8 +75,9 @@ namespace viscofilm
     /// The velocity block's approximate inverse in the block preconditioner.
     enum class VelocityPreconditioner
     {
-      amg, // Trilinos ML on the AMG matrix
-      gmg  // geometric multigrid, matrix-free (stokes_velocity_multigrid.h)
+      amg,      // Trilinos ML on the AMG matrix
+      gmg,      // geometric multigrid, matrix-free (stokes_velocity_multigrid.h)
+      automatic // GMG on large meshes without periodic boundaries, else AMG
     };
 
     /// The pressure space of the Taylor–Hood pair.
@@ -116,7 +117,7 @@ namespace viscofilm
       /// The matrix ML builds the velocity block's hierarchy from.
       AMGMatrix    amg_matrix = dim == 2 ? AMGMatrix::q1_subcells :
                                              AMGMatrix::q1_subcells_by_component;
-      VelocityPreconditioner velocity_preconditioner = VelocityPreconditioner::amg;
+      VelocityPreconditioner velocity_preconditioner = VelocityPreconditioner::automatic;
       unsigned int gmg_smoother_degree = 4; // Chebyshev degree on each level
       double       velocity_inner_tolerance  = 1e-2; // expensive iterations
       unsigned int velocity_inner_iterations = 1000;
@@ -245,6 +246,11 @@ namespace viscofilm
     /// How often the velocity AMG was built so far (Preconditioner/Reuse).
     unsigned int
     n_preconditioner_builds() const;
+
+    /// The velocity block's preconditioner on this mesh ("AMG" or "GMG";
+    /// empty for the solvers without one).
+    std::string
+    velocity_preconditioner() const;
 
     /// The rebuild criterion's measure at the last matrix assembly: the
     /// volume mean of |ln(η/η_built)| against the AMG in use until then (0

@@ -17,6 +17,7 @@
 #include <viscofilm/stokes.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace viscofilm
@@ -106,6 +107,10 @@ namespace viscofilm
     n_preconditioner_builds() const;
     virtual double
     viscosity_change_since_build() const;
+    /// "AMG" or "GMG" on the current mesh (block preconditioned; empty
+    /// otherwise).
+    virtual std::string
+    velocity_preconditioner() const;
   };
 
 
