@@ -43,8 +43,9 @@ namespace viscofilm
     prm.declare_entry("Method",
                       "block preconditioned",
                       Patterns::Selection("block preconditioned|direct|thesis"),
-                      "block preconditioned: FGMRES with AMG on the velocity "
-                      "block and the 1/η-weighted pressure mass matrix for the "
+                      "block preconditioned: FGMRES with AMG or GMG on the "
+                      "velocity block (Preconditioner/Velocity preconditioner) "
+                      "and the 1/η-weighted pressure mass matrix for the "
                       "Schur complement (scales to large meshes). direct: "
                       "sparse LU (Amesos KLU) of the whole system, for tiny "
                       "meshes and debugging. thesis: the thesis' solver, GMRES "
