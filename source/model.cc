@@ -141,12 +141,12 @@ namespace viscofilm
                       "1",
                       Patterns::Double(0),
                       "L, only for the derived numbers printed at start (Re = "
-                      "ρUL/ηs, Wi = λU/L); the equations do not use it.");
+                      "ρUL/ηs, Wi = λU/L); the equations do not use it. > 0.");
     prm.declare_entry("Velocity scale",
                       "1",
                       Patterns::Double(0),
                       "U, only for the derived numbers printed at start; the "
-                      "equations do not use it.");
+                      "equations do not use it. > 0.");
     for (const char *name : phase_names)
       {
         const bool water = (std::string(name) == "Water");
@@ -195,6 +195,11 @@ namespace viscofilm
     viscoelastic   = prm.get_bool("Viscoelastic");
     length_scale   = prm.get_double("Length scale");
     velocity_scale = prm.get_double("Velocity scale");
+    check_input(length_scale > 0,
+                "Model/Length scale must be > 0 (it divides Wi = λU/L), got " +
+                  to_text(length_scale));
+    check_input(velocity_scale > 0,
+                "Model/Velocity scale must be > 0, got " + to_text(velocity_scale));
 
     const bool si     = (units == Units::SI);
     const bool phases = (rheology == Rheology::phases);

@@ -458,6 +458,7 @@ namespace viscofilm
     const double speed = stokes.max_velocity();
     for (unsigned int rejected = 0;; ++rejected)
       {
+        time_step = 0; // a failure to find the step reports t_n, not t_n + the last k
         time_step = stepping.step_length(time, speed, min_cell_size, proposed_time_step);
         step_cfl  = speed * time_step / min_cell_size;
         StepReport report = do_time_step(time + time_step);

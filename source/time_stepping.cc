@@ -28,7 +28,8 @@ namespace viscofilm
                       "0: every step is Time step long. > 0: each step is "
                       "min(Time step, CFL number × Δx / max|u^n|) long (Δx the "
                       "smallest cell edge), and the run ends at the time "
-                      "Number of steps × Time step.");
+                      "Number of steps × Time step; a step under 1e-13 of "
+                      "that time stops the run with a message.");
     prm.declare_entry("Order",
                       "1",
                       Patterns::Integer(1, 2),
@@ -157,7 +158,22 @@ namespace viscofilm
         else if (rest < 2 * k)
           k = rest / 2;
       }
-    return std::min(k, n_steps * time_step - time);
+    const double end_time = n_steps * time_step;
+    k                     = std::min(k, end_time - time);
+    // A step this short would not end the run (t + k may not even change t
+    // in double precision): a CFL number or Minimum time step far too small
+    // for this flow. The loop ends once end_time - t <= 1e-12 end_time.
+    AssertThrow(k >= 1e-13 * end_time,
+                ExcMessage("the time step k = " + to_text(k) + " is below 1e-13 of the run's "
+                           "length " + to_text(end_time) + ", so the run would not end; "
+                           "Time stepping/CFL number = " + to_text(cfl) +
+                           " bounds k by CFL number × Δx / max|u| = " +
+                           to_text(max_speed > 0 ? cfl * cell_size / max_speed : 0.) +
+                           (tolerance > 0 ? ", Time stepping/Minimum time step = " +
+                                              to_text(minimum_time_step) :
+                                            std::string()) +
+                           ": raise it"));
+    return k;
   }
 
 

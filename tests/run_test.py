@@ -16,7 +16,8 @@ Modes
   error        run FILE.prm (after the --args options, or the --args command
                line alone), expect a non-zero
                exit status, the message in --reference on stderr, and no
-               output directory.
+               output directory; with --valid-steps N, a run stopped in step
+               N + 1: its statistics.csv must hold steps 0 … N, whole.
   restart      run FILE.prm (which sets Checkpointing/Interval) to its end, and
                again stopped after --stop-after steps and resumed from its
                checkpoint: the --compare columns of both must agree to
@@ -280,8 +281,17 @@ def mode_error(opts, workdir):
         fail("viscofilm accepted bad input (exit status 0)")
     if "Stacktrace" in result.stderr or "----" in result.stderr.split("\n")[0]:
         fail("the error message carries a backtrace:\n" + result.stderr)
-    if directory and os.path.exists(directory):
-        fail("an output directory was written for bad input: " + directory)
+    if opts.valid_steps is None:
+        if directory and os.path.exists(directory):
+            fail("an output directory was written for bad input: " + directory)
+    else:
+        # What the stopped run wrote before the failing step: every row whole.
+        rows = read_csv(os.path.join(directory, "statistics.csv"))
+        steps = [row["step"] for row in rows]
+        if steps != [str(i) for i in range(opts.valid_steps + 1)] or \
+           any(None in row.values() or None in row for row in rows):
+            fail("statistics.csv holds steps %s, not 0 ... %d, whole"
+                 % (",".join(steps), opts.valid_steps))
     # Open MPI adds its own banner (a line of dashes) after our message.
     ours = []
     for line in result.stderr.splitlines():
@@ -425,6 +435,7 @@ def main():
     parser.add_argument("--differences", action="store_true")
     parser.add_argument("--timeout", type=float, default=600)
     parser.add_argument("--stop-after", default="4")
+    parser.add_argument("--valid-steps", type=int)
     parser.add_argument("--interrupt-commit", action="store_true")
     parser.add_argument("--resume-set", action="append", default=[])
     parser.add_argument("--exact", action="append", default=[])
