@@ -60,15 +60,6 @@ namespace viscofilm
     output.parse_parameters(prm);
     verification.parse_parameters(prm);
     checkpointing.parse_parameters(prm);
-    // FCT's limiter needs a conforming mesh, and it has no error estimate.
-    check_input(!(stabilization.flux_corrected && mesh_refinement.adaptive),
-                "Stabilization/Volume fraction scheme = FCT needs a mesh without "
-                "hanging nodes: Mesh refinement/Adaptive = true needs Volume "
-                "fraction scheme = semi-Lagrangian");
-    check_input(!(stabilization.flux_corrected && time_stepping.controlled()),
-                "Stabilization/Volume fraction scheme = FCT has no error estimate "
-                "for Time stepping/Tolerance: error-controlled steps need Volume "
-                "fraction scheme = semi-Lagrangian");
   }
 
 

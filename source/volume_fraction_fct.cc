@@ -8,6 +8,7 @@
 
 #include <viscofilm/boundary_conditions.h>
 #include <viscofilm/dof_cell.h>
+#include <viscofilm/input.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/volume_fraction.h>
 
@@ -21,16 +22,20 @@
 
 namespace viscofilm
 {
-  /// Rows are the owned free nodes; columns and rows are numbered within the
-  /// locally relevant dofs. [0]: at u^n, [1]: at u^{n+1}; every entry is
+  /// Rows are the owned free nodes; columns and rows are numbered within
+  /// the stencil. [0]: at u^n, [1]: at u^{n+1}; every entry is
   /// linear in u, so a stage's operator is (1 − θ)[0] + θ[1].
   template <int dim>
   struct VolumeFraction<dim>::TransportOperator
   {
-    std::vector<unsigned int>            rows;      // relevant-local index
+    /// The locally relevant dofs and every column of the owned rows: on an
+    /// adapted mesh a master of a hanging node couples to the hanging
+    /// node's cell, which need not be a ghost of the master's owner.
+    IndexSet                             stencil;
+    std::vector<unsigned int>            rows;      // stencil-local index
     std::vector<types::global_dof_index> row_dofs;  // global index
     std::vector<unsigned int>            row_start; // into columns
-    std::vector<unsigned int>            columns;   // relevant-local index
+    std::vector<unsigned int>            columns;   // stencil-local index
     std::array<std::vector<double>, 2>   k_ij, k_ji;
     std::vector<double>                  mass; // ∫ψ_i
     /// (m_i/|Ω|)^{1.5/dim}: how far the bounds may relax at a smooth extremum.
@@ -68,7 +73,8 @@ namespace viscofilm
   template <int dim>
   void
   VolumeFraction<dim>::flux_corrected_step(const StokesSolver<dim> &stokes,
-                                           const double             time_step)
+                                           const double             time_step,
+                                           const bool               estimate_error)
   {
     // Hanging nodes (none) and periodicity only: inflow enters weakly, by
     // the boundary term, so that the mass balance is the boundary's flux.
@@ -186,15 +192,26 @@ namespace viscofilm
         if (side == 0)
           mass.compress(VectorOperation::add);
 
-        // The owned free rows into the operator's arrays.
+        // The owned free rows into the operator's arrays. The two sides'
+        // matrices share system_matrix's graph, so its columns are the same.
         if (side == 0)
-          op.row_start.push_back(0);
+          {
+            op.stencil                  = locally_relevant_dofs;
+            const Epetra_Map &column_map = convection.trilinos_matrix().ColMap();
+            std::vector<types::global_dof_index> column_dofs;
+            for (int c = 0; c < column_map.NumMyElements(); ++c)
+              column_dofs.push_back(column_map.GID64(c));
+            std::sort(column_dofs.begin(), column_dofs.end());
+            op.stencil.add_indices(column_dofs.begin(), column_dofs.end());
+            op.stencil.compress();
+            op.row_start.push_back(0);
+          }
         for (const auto i : owned)
           if (!constraints.is_constrained(i))
             {
               if (side == 0)
                 {
-                  op.rows.push_back(locally_relevant_dofs.index_within_set(i));
+                  op.rows.push_back(op.stencil.index_within_set(i));
                   op.row_dofs.push_back(i);
                 }
               // Epetra's row views (deal.II's row iterators are slow): the two
@@ -211,8 +228,8 @@ namespace viscofilm
               for (int e = 0; e < n; ++e)
                 {
                   if (side == 0)
-                    op.columns.push_back(locally_relevant_dofs.index_within_set(
-                      matrix.ColMap().GID64(columns[e])));
+                    op.columns.push_back(
+                      op.stencil.index_within_set(matrix.ColMap().GID64(columns[e])));
                   op.k_ij[side].push_back(values[e]);
                   op.k_ji[side].push_back(values_t[e]);
                 }
@@ -232,6 +249,17 @@ namespace viscofilm
           }
       }
 
+    // The free nodes' shape functions with their hanging nodes' shares,
+    // Σ_h c_hi ψ_h, sum to one, so the rows of k_ij sum to zero on adapted
+    // meshes too; the low-order stage is a convex combination as long as
+    // each ∫ψ_i is positive, which the Q2 weights (3/8, 3/4, −1/8 per
+    // direction) leave it on the meshes we make: checked, not assumed.
+    for (unsigned int r = 0; r < op.rows.size(); ++r)
+      AssertThrow(op.mass[r] > 0,
+                  ExcMessage("Volume fraction scheme = FCT: the lumped mass of node " +
+                             std::to_string(op.row_dofs[r]) + " is " + to_text(op.mass[r]) +
+                             " (not positive), so the scheme would not stay bounded "
+                             "on this mesh; use Volume fraction scheme = semi-Lagrangian"));
     const double volume = Utilities::MPI::sum(
       std::accumulate(op.mass.begin(), op.mass.end(), 0.0), mpi_communicator);
     for (const double m : op.mass)
@@ -255,29 +283,70 @@ namespace viscofilm
     const double k = time_step / last_substeps;
 
     // SSP-RK3 (Shu-Osher) in each sub-step s: stages at θ_s, θ_{s+1},
-    // θ_{s+1/2}, weights 1/6, 1/6, 2/3 of the boundary's rates.
+    // θ_{s+1/2}, weights 1/6, 1/6, 2/3 of the boundary's rates. With
+    // @p first_order every stage takes u^{n+1} (θ = 1): first order in k, as
+    // the semi-Lagrangian feet with u^{n+1}, the error estimate's embedded
+    // update.
     TrilinosWrappers::MPI::Vector start(owned, mpi_communicator), stage(start), next(start);
-    TrilinosWrappers::MPI::Vector ghosted(owned, locally_relevant_dofs, mpi_communicator);
-    Exchange flux;
-    for (unsigned int s = 0; s < last_substeps; ++s)
+    TrilinosWrappers::MPI::Vector ghosted(owned, op.stencil, mpi_communicator);
+    const auto substeps = [&](const bool first_order, Exchange &flux) {
+      for (unsigned int s = 0; s < last_substeps; ++s)
+        {
+          const double theta0 = first_order ? 1.0 : double(s) / last_substeps;
+          const double theta1 = first_order ? 1.0 : double(s + 1) / last_substeps;
+          start               = current_solution;
+          ghosted             = start;
+          flux_corrected_stage(op, theta0, k, ghosted, stage, 1.0 / 6, flux);
+          ghosted = stage;
+          flux_corrected_stage(op, theta1, k, ghosted, next, 1.0 / 6, flux);
+          stage.equ(0.75, start);
+          stage.add(0.25, next);
+          ghosted = stage;
+          flux_corrected_stage(op, (theta0 + theta1) / 2, k, ghosted, next, 2.0 / 3, flux);
+          start *= 1.0 / 3;
+          start.add(2.0 / 3, next);
+          current_solution = start;
+        }
+    };
+    TrilinosWrappers::MPI::Vector first_order;
+    if (estimate_error)
       {
-        const double theta0 = double(s) / last_substeps;
-        const double theta1 = double(s + 1) / last_substeps;
-        start               = current_solution;
-        flux_corrected_stage(op, theta0, k, current_solution, stage, 1.0 / 6, flux);
-        ghosted = stage;
-        flux_corrected_stage(op, theta1, k, ghosted, next, 1.0 / 6, flux);
-        stage.equ(0.75, start);
-        stage.add(0.25, next);
-        ghosted = stage;
-        flux_corrected_stage(op, (theta0 + theta1) / 2, k, ghosted, next, 2.0 / 3, flux);
-        start *= 1.0 / 3;
-        start.add(2.0 / 3, next);
-        current_solution = start;
+        const TrilinosWrappers::MPI::Vector phi_old = current_solution;
+        Exchange                            unused;
+        substeps(true, unused);
+        first_order.reinit(owned, mpi_communicator);
+        first_order      = current_solution;
+        current_solution = phi_old;
       }
+    Exchange flux;
+    substeps(false, flux);
     exchange.outflow += k * Utilities::MPI::sum(flux.outflow, mpi_communicator);
     exchange.inflow += k * Utilities::MPI::sum(flux.inflow, mpi_communicator);
     exchange.net = exchange.outflow - exchange.inflow;
+    if (estimate_error)
+      {
+        double difference = 0;
+        for (const auto i : owned)
+          difference = std::max(difference, std::abs(current_solution[i] - first_order[i]));
+        last_error_estimate = Utilities::MPI::max(difference, mpi_communicator);
+      }
+
+    // The free nodes are bounded; a hanging node takes the coarse face's
+    // Q2 interpolant, which can leave their range by 1/8 of a jump: back
+    // into it as the semi-Lagrangian scheme does, ∫φ kept.
+    if (dofs.get_triangulation().has_hanging_nodes())
+      {
+        double low = std::numeric_limits<double>::max(), high = std::numeric_limits<double>::lowest();
+        for (const types::global_dof_index i : op.row_dofs)
+          {
+            low  = std::min(low, static_cast<double>(current_solution[i]));
+            high = std::max(high, static_cast<double>(current_solution[i]));
+          }
+        TrilinosWrappers::MPI::Vector lower(owned, mpi_communicator), upper(lower);
+        lower = Utilities::MPI::min(low, mpi_communicator);
+        upper = Utilities::MPI::max(high, mpi_communicator);
+        restore_mass(integral(), lower, upper);
+      }
   }
 
 
@@ -293,10 +362,10 @@ namespace viscofilm
   {
     const unsigned int  n_rows = op.rows.size();
     const IndexSet &    owned  = dofs.locally_owned_dofs();
-    std::vector<double> value(locally_relevant_dofs.n_elements());
+    std::vector<double> value(op.stencil.n_elements());
     {
       unsigned int l = 0;
-      for (const auto i : locally_relevant_dofs)
+      for (const auto i : op.stencil)
         value[l++] = phi[i];
     }
     const auto convection = [&](const unsigned int e) {
@@ -360,13 +429,13 @@ namespace viscofilm
     lower.compress(VectorOperation::insert);
     upper.compress(VectorOperation::insert);
     // The neighbours' bounds, from their owners.
-    TrilinosWrappers::MPI::Vector ghosted(owned, locally_relevant_dofs, mpi_communicator);
+    TrilinosWrappers::MPI::Vector ghosted(owned, op.stencil, mpi_communicator);
     std::vector<double>           lower_of(value.size()), upper_of(value.size());
     for (auto [bound, local] : {std::pair(&lower, &lower_of), std::pair(&upper, &upper_of)})
       {
         ghosted        = *bound;
         unsigned int l = 0;
-        for (const auto i : locally_relevant_dofs)
+        for (const auto i : op.stencil)
           (*local)[l++] = ghosted[i];
       }
 

@@ -102,8 +102,9 @@ namespace viscofilm
     /// diffusion step and the mass fixer. FCT: SSP-RK3 stages from u^n to
     /// u^{n+1} (either order; @p feet unused), then the bounded diffusion
     /// step. Thesis: GLS-stabilised Galerkin.
-    /// @p estimate_error (order 2, bounded): also the first-order feet, for
-    /// error_estimate(). Returns the linear solver's iteration count.
+    /// @p estimate_error (order 2, bounded): also the first-order feet (FCT:
+    /// the stages with u^{n+1}), for error_estimate(). Returns the linear
+    /// solver's iteration count.
     unsigned int
     advance(const StokesSolver<dim> &stokes,
             DepartureFeet<dim> & feet,
@@ -114,7 +115,8 @@ namespace viscofilm
 
     /// After advance() with estimate_error: max over the nodes of |φ₂ − φ₁|,
     /// the advected φ of the second-order feet against that of the
-    /// first-order ones (φ is a fraction: the absolute difference is
+    /// first-order ones (FCT: of the stages with u interpolated against
+    /// those with u^{n+1}; φ is a fraction: the absolute difference is
     /// dimensionless), the local error of a first-order step. 0 otherwise.
     double
     error_estimate() const;
@@ -239,8 +241,12 @@ namespace viscofilm
 
     /// FCT: φ^{n+1} from φ^n by SSP-RK3 with the velocity interpolated
     /// linearly between u^n and u^{n+1} at each stage, every stage limited.
+    /// @p estimate_error: also the step with u^{n+1} in every stage (first
+    /// order), for error_estimate().
     void
-    flux_corrected_step(const StokesSolver<dim> &stokes, const double time_step);
+    flux_corrected_step(const StokesSolver<dim> &stokes,
+                        const double             time_step,
+                        const bool               estimate_error);
 
     /// One limited forward Euler stage: @p result := φ + k M_L^{-1}(low-order
     /// rate + limited antidiffusion) from the ghosted @p phi with the operator
