@@ -123,6 +123,14 @@ namespace viscofilm
                                       mpi_communicator));
     sparsity.compress();
     system_matrix.reinit(sparsity);
+    matrix_columns                = locally_relevant_dofs;
+    const Epetra_Map &column_map = system_matrix.trilinos_matrix().ColMap();
+    std::vector<types::global_dof_index> columns;
+    for (int c = 0; c < column_map.NumMyElements(); ++c)
+      columns.push_back(column_map.GID64(c));
+    std::sort(columns.begin(), columns.end());
+    matrix_columns.add_indices(columns.begin(), columns.end());
+    matrix_columns.compress();
   }
 
 
@@ -250,11 +258,7 @@ namespace viscofilm
           stokes_dofs, stokes.solution(), feet, time_step, advected, lower, upper);
         const TrilinosWrappers::MPI::Vector first_order = advected;
         semi_lagrangian_step(stokes_dofs, velocity, feet, time_step, advected, lower, upper);
-        double difference = 0;
-        for (const auto i : dofs.locally_owned_dofs())
-          difference =
-            std::max(difference, std::abs(advected[i] - first_order[i]));
-        last_error_estimate = Utilities::MPI::max(difference, mpi_communicator);
+        last_error_estimate = max_difference(advected, first_order);
       }
     else
       semi_lagrangian_step(stokes_dofs, velocity, feet, time_step, advected, lower, upper);
@@ -312,18 +316,14 @@ namespace viscofilm
         return;
       }
     make_constraints(nullptr);
-    TrilinosWrappers::MPI::Vector lower(dofs.locally_owned_dofs(), mpi_communicator);
-    TrilinosWrappers::MPI::Vector upper(lower);
     for (unsigned int s = 0; s < n_steps; ++s)
       {
         // The lumped mass of the sub-cells is conserved, not ∫φ: restore it
         // within the range of φ^n.
         const double mass            = integral();
         const auto [phi_min, phi_max] = range();
-        lower                         = phi_min;
-        upper                         = phi_max;
         bounded_diffusion_step(diffusion, time_step);
-        restore_mass(mass, lower, upper);
+        restore_mass(mass, phi_min, phi_max);
       }
   }
 
@@ -702,6 +702,30 @@ namespace viscofilm
 
 
   template <int dim>
+  void
+  VolumeFraction<dim>::restore_mass(const double mass, const double low, const double high)
+  {
+    TrilinosWrappers::MPI::Vector lower(dofs.locally_owned_dofs(), mpi_communicator);
+    TrilinosWrappers::MPI::Vector upper(lower);
+    lower = low;
+    upper = high;
+    restore_mass(mass, lower, upper);
+  }
+
+
+  template <int dim>
+  double
+  VolumeFraction<dim>::max_difference(const TrilinosWrappers::MPI::Vector &a,
+                                      const TrilinosWrappers::MPI::Vector &b) const
+  {
+    double difference = 0;
+    for (const auto i : dofs.locally_owned_dofs())
+      difference = std::max(difference, std::abs(a[i] - b[i]));
+    return Utilities::MPI::max(difference, mpi_communicator);
+  }
+
+
+  template <int dim>
   typename VolumeFraction<dim>::Exchange
   VolumeFraction<dim>::boundary_flux(const DoFHandler<dim> &                stokes_dofs,
                                 const TrilinosWrappers::MPI::BlockVector &velocity_field) const
@@ -816,11 +840,7 @@ namespace viscofilm
       distributed[i] = std::clamp(static_cast<double>(distributed[i]), phi_min, phi_max);
     constraints.distribute(distributed);
     current_solution = distributed;
-    TrilinosWrappers::MPI::Vector lower(dofs.locally_owned_dofs(), mpi_communicator);
-    TrilinosWrappers::MPI::Vector upper(lower);
-    lower = phi_min;
-    upper = phi_max;
-    restore_mass(mass, lower, upper);
+    restore_mass(mass, phi_min, phi_max);
     distributed = current_solution;
   }
 

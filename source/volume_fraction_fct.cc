@@ -23,19 +23,15 @@
 namespace viscofilm
 {
   /// Rows are the owned free nodes; columns and rows are numbered within
-  /// the stencil. [0]: at u^n, [1]: at u^{n+1}; every entry is
+  /// matrix_columns. [0]: at u^n, [1]: at u^{n+1}; every entry is
   /// linear in u, so a stage's operator is (1 − θ)[0] + θ[1].
   template <int dim>
   struct VolumeFraction<dim>::TransportOperator
   {
-    /// The locally relevant dofs and every column of the owned rows: on an
-    /// adapted mesh a master of a hanging node couples to the hanging
-    /// node's cell, which need not be a ghost of the master's owner.
-    IndexSet                             stencil;
-    std::vector<unsigned int>            rows;      // stencil-local index
+    std::vector<unsigned int>            rows;      // matrix_columns-local index
     std::vector<types::global_dof_index> row_dofs;  // global index
     std::vector<unsigned int>            row_start; // into columns
-    std::vector<unsigned int>            columns;   // stencil-local index
+    std::vector<unsigned int>            columns;   // matrix_columns-local index
     std::array<std::vector<double>, 2>   k_ij, k_ji;
     std::vector<double>                  mass; // ∫ψ_i
     /// (m_i/|Ω|)^{1.5/dim}: how far the bounds may relax at a smooth extremum.
@@ -192,26 +188,15 @@ namespace viscofilm
         if (side == 0)
           mass.compress(VectorOperation::add);
 
-        // The owned free rows into the operator's arrays. The two sides'
-        // matrices share system_matrix's graph, so its columns are the same.
+        // The owned free rows into the operator's arrays.
         if (side == 0)
-          {
-            op.stencil                  = locally_relevant_dofs;
-            const Epetra_Map &column_map = convection.trilinos_matrix().ColMap();
-            std::vector<types::global_dof_index> column_dofs;
-            for (int c = 0; c < column_map.NumMyElements(); ++c)
-              column_dofs.push_back(column_map.GID64(c));
-            std::sort(column_dofs.begin(), column_dofs.end());
-            op.stencil.add_indices(column_dofs.begin(), column_dofs.end());
-            op.stencil.compress();
-            op.row_start.push_back(0);
-          }
+          op.row_start.push_back(0);
         for (const auto i : owned)
           if (!constraints.is_constrained(i))
             {
               if (side == 0)
                 {
-                  op.rows.push_back(op.stencil.index_within_set(i));
+                  op.rows.push_back(matrix_columns.index_within_set(i));
                   op.row_dofs.push_back(i);
                 }
               // Epetra's row views (deal.II's row iterators are slow): the two
@@ -229,7 +214,7 @@ namespace viscofilm
                 {
                   if (side == 0)
                     op.columns.push_back(
-                      op.stencil.index_within_set(matrix.ColMap().GID64(columns[e])));
+                      matrix_columns.index_within_set(matrix.ColMap().GID64(columns[e])));
                   op.k_ij[side].push_back(values[e]);
                   op.k_ji[side].push_back(values_t[e]);
                 }
@@ -288,7 +273,7 @@ namespace viscofilm
     // the semi-Lagrangian feet with u^{n+1}, the error estimate's embedded
     // update.
     TrilinosWrappers::MPI::Vector start(owned, mpi_communicator), stage(start), next(start);
-    TrilinosWrappers::MPI::Vector ghosted(owned, op.stencil, mpi_communicator);
+    TrilinosWrappers::MPI::Vector ghosted(owned, matrix_columns, mpi_communicator);
     const auto substeps = [&](const bool first_order, Exchange &flux) {
       for (unsigned int s = 0; s < last_substeps; ++s)
         {
@@ -324,12 +309,7 @@ namespace viscofilm
     exchange.inflow += k * Utilities::MPI::sum(flux.inflow, mpi_communicator);
     exchange.net = exchange.outflow - exchange.inflow;
     if (estimate_error)
-      {
-        double difference = 0;
-        for (const auto i : owned)
-          difference = std::max(difference, std::abs(current_solution[i] - first_order[i]));
-        last_error_estimate = Utilities::MPI::max(difference, mpi_communicator);
-      }
+      last_error_estimate = max_difference(current_solution, first_order);
 
     // The free nodes are bounded; a hanging node takes the coarse face's
     // Q2 interpolant, which can leave their range by 1/8 of a jump: back
@@ -342,10 +322,9 @@ namespace viscofilm
             low  = std::min(low, static_cast<double>(current_solution[i]));
             high = std::max(high, static_cast<double>(current_solution[i]));
           }
-        TrilinosWrappers::MPI::Vector lower(owned, mpi_communicator), upper(lower);
-        lower = Utilities::MPI::min(low, mpi_communicator);
-        upper = Utilities::MPI::max(high, mpi_communicator);
-        restore_mass(integral(), lower, upper);
+        restore_mass(integral(),
+                     Utilities::MPI::min(low, mpi_communicator),
+                     Utilities::MPI::max(high, mpi_communicator));
       }
   }
 
@@ -362,10 +341,10 @@ namespace viscofilm
   {
     const unsigned int  n_rows = op.rows.size();
     const IndexSet &    owned  = dofs.locally_owned_dofs();
-    std::vector<double> value(op.stencil.n_elements());
+    std::vector<double> value(matrix_columns.n_elements());
     {
       unsigned int l = 0;
-      for (const auto i : op.stencil)
+      for (const auto i : matrix_columns)
         value[l++] = phi[i];
     }
     const auto convection = [&](const unsigned int e) {
@@ -429,13 +408,13 @@ namespace viscofilm
     lower.compress(VectorOperation::insert);
     upper.compress(VectorOperation::insert);
     // The neighbours' bounds, from their owners.
-    TrilinosWrappers::MPI::Vector ghosted(owned, op.stencil, mpi_communicator);
+    TrilinosWrappers::MPI::Vector ghosted(owned, matrix_columns, mpi_communicator);
     std::vector<double>           lower_of(value.size()), upper_of(value.size());
     for (auto [bound, local] : {std::pair(&lower, &lower_of), std::pair(&upper, &upper_of)})
       {
         ghosted        = *bound;
         unsigned int l = 0;
-        for (const auto i : op.stencil)
+        for (const auto i : matrix_columns)
           (*local)[l++] = ghosted[i];
       }
 

@@ -228,6 +228,15 @@ namespace viscofilm
                  const TrilinosWrappers::MPI::Vector &lower,
                  const TrilinosWrappers::MPI::Vector &upper);
 
+    /// restore_mass() with the same bounds [@p low, @p high] at every node.
+    void
+    restore_mass(const double mass, const double low, const double high);
+
+    /// max over all nodes of |@p a_i − @p b_i| (owned values, all ranks).
+    double
+    max_difference(const TrilinosWrappers::MPI::Vector &a,
+                   const TrilinosWrappers::MPI::Vector &b) const;
+
     /// ∫_∂Ω φ u·n ds with the velocity @p velocity on @p stokes_dofs, and
     /// its outflow and inflow parts.
     Exchange
@@ -282,6 +291,11 @@ namespace viscofilm
     std::optional<std::array<double, 3>> before_transfer;
 
     TrilinosWrappers::SparseMatrix system_matrix;
+    /// The locally relevant dofs and every column of system_matrix's owned
+    /// rows, where FCT reads φ: on an adapted mesh a master of a hanging
+    /// node couples to the hanging node's cell, which need not be a ghost of
+    /// the master's owner.
+    IndexSet matrix_columns;
     TrilinosWrappers::MPI::Vector  system_rhs;
     double                        last_error_estimate = 0;
     unsigned int                  last_substeps       = 1;
