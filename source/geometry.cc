@@ -1,3 +1,6 @@
+// InverseQuadraticApproximation: the copied TransfiniteInterpolationManifold holds them.
+#include <deal.II/fe/mapping_q_internal.h>
+
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/manifold_lib.h>
@@ -34,6 +37,28 @@ namespace viscofilm
       axis[dim - 1] = 1;
       return std::make_unique<CylindricalManifold<dim>>(axis, centre);
     }
+
+    /**
+     * deal.II's TransfiniteInterpolationManifold whose clones copy its state.
+     * deal.II 9.4 re-initialises each clone (every copy_triangulation(): the
+     * multigrid's coarse meshes) on the triangulation the original was
+     * initialised on, as it is now: once refined and graded, its table of
+     * coarse cells is sized by the finest level but indexed by every active
+     * cell, and the writes past its end corrupted the heap (the multigrid's
+     * set-up on a graded cylinder mesh, 2 ranks). A copy keeps the coarse
+     * mesh's table.
+     */
+    template <int dim>
+    class CopyableTransfiniteManifold : public TransfiniteInterpolationManifold<dim>
+    {
+    public:
+      std::unique_ptr<Manifold<dim>>
+      clone() const override
+      {
+        return std::make_unique<CopyableTransfiniteManifold<dim>>(*this);
+      }
+    };
+
 
     /// The distance from the cylinder's axis to the nearest side of the
     /// channel, in the plane (x, y) across the axis.
@@ -404,7 +429,7 @@ namespace viscofilm
                                          /*colorize*/ true);
         // Refined vertices on the cylinder, and smoothly placed around it.
         triangulation.set_manifold(polar_manifold, *cylinder_manifold(centre));
-        TransfiniteInterpolationManifold<dim> transfinite;
+        CopyableTransfiniteManifold<dim> transfinite;
         transfinite.initialize(triangulation);
         triangulation.set_manifold(transfinite_manifold, transfinite);
       }
