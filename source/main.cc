@@ -10,9 +10,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <chrono>
+#include <cstdlib>
 #include <sstream>
 #include <string>
-#include <cstdlib>
+#include <thread>
 #include <vector>
 
 namespace
@@ -195,6 +197,28 @@ namespace
   }
 
 
+  /// A run that stopped (Problem and its files closed): with one rank, the
+  /// exit code 1. With more, the failure may be this rank's alone while the
+  /// others wait for it in a collective call, so it stops them all
+  /// (MPI_Abort, exit code 1). When every rank failed alike (a solver, a
+  /// NaN), rank 0 prints and aborts at once; the others wait a moment first,
+  /// so that the message appears once.
+  int
+  stop_run(const std::string &message)
+  {
+    const unsigned int rank    = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+    const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+    if (rank > 0)
+      std::this_thread::sleep_for(std::chrono::seconds(2));
+    std::cerr << "viscofilm: run stopped"
+              << (rank > 0 ? " (on MPI rank " + std::to_string(rank) + ")" : std::string())
+              << ": " << message << std::endl;
+    if (n_ranks > 1)
+      MPI_Abort(MPI_COMM_WORLD, 1);
+    return 1;
+  }
+
+
   /// Read @p filename and, unless @p validate_only, run it in dim
   /// dimensions; the exit code.
   template <int dim>
@@ -238,7 +262,7 @@ namespace
       }
     catch (const std::exception &e)
       {
-        return fail("run stopped", error_message(e));
+        return stop_run(error_message(e));
       }
     return 0;
   }
