@@ -387,14 +387,23 @@ namespace viscofilm
 
 
   template <int dim>
-  bool
-  BoundaryConditions<dim>::fixes_pressure_level() const
+  std::set<types::boundary_id>
+  BoundaryConditions<dim>::traction_boundary_ids() const
   {
+    std::set<types::boundary_id> ids;
     for (const Boundary &boundary : boundaries)
       if (boundary.type == Type::outflow || boundary.type == Type::pressure ||
           boundary.type == Type::traction_free)
-        return true;
-    return false;
+        ids.insert(boundary.id);
+    return ids;
+  }
+
+
+  template <int dim>
+  bool
+  BoundaryConditions<dim>::fixes_pressure_level() const
+  {
+    return !traction_boundary_ids().empty();
   }
 
   VISCOFILM_INSTANTIATE(BoundaryConditions)

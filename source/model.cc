@@ -102,13 +102,16 @@ namespace viscofilm
                       "1.6667e-6",
                       Patterns::Double(0),
                       "Units = dimensionless: Res = ρ U0 L0 / ηs, multiplying "
-                      "∂u/∂t (inertia u·∇u is dropped). Table 4.1: 1.6667e-6. "
-                      "0 gives steady Stokes.");
+                      "the material derivative Du/Dt = ∂u/∂t + u·∇u "
+                      "(semi-Lagrangian: u^n read at the departure feet). "
+                      "Table 4.1: 1.6667e-6. 0 gives steady Stokes.");
     prm.declare_entry("Density",
                       "",
                       Patterns::Anything(),
                       "Units = SI (required there): ρ in kg/m³, multiplying "
-                      "∂u/∂t (inertia u·∇u is dropped). 0 gives steady Stokes.");
+                      "the material derivative Du/Dt = ∂u/∂t + u·∇u "
+                      "(semi-Lagrangian: u^n read at the departure feet). 0 "
+                      "gives steady Stokes.");
     prm.declare_entry("Viscosity ratio",
                       "500",
                       Patterns::Double(0),

@@ -45,8 +45,10 @@ namespace viscofilm
                       Patterns::Selection("block preconditioned|direct|thesis"),
                       "block preconditioned: FGMRES with AMG or GMG on the "
                       "velocity block (Preconditioner/Velocity preconditioner) "
-                      "and the 1/η-weighted pressure mass matrix for the "
-                      "Schur complement (scales to large meshes). direct: "
+                      "and, for the Schur complement, the 1/η-weighted "
+                      "pressure mass matrix plus, with a mass term, ρ/k times "
+                      "the inverse pressure Laplacian (Cahouet-Chabard; scales "
+                      "to large meshes). direct: "
                       "sparse LU (Amesos KLU) of the whole system, for tiny "
                       "meshes and debugging. thesis: the thesis' solver, GMRES "
                       "(AztecOO) with an incomplete LU factorisation of the "
@@ -200,14 +202,15 @@ namespace viscofilm
     prm.declare_entry("Schur inner tolerance",
                       "1e-3",
                       Patterns::Double(0, 1),
-                      "Relative tolerance of the inner CG solve with the "
-                      "1/η-weighted pressure mass matrix (the Schur complement's "
-                      "stand-in), in (0, 1).");
+                      "Relative tolerance of the inner CG solves with the "
+                      "1/η-weighted pressure mass matrix and the pressure "
+                      "Laplacian (the Schur complement's stand-in), in (0, 1).");
     prm.declare_entry("Schur inner iterations",
                       "200",
                       Patterns::Integer(1),
-                      "Iterations of the inner CG solve with the weighted "
-                      "pressure mass matrix at most, >= 1.");
+                      "Iterations of each inner CG solve with the weighted "
+                      "pressure mass matrix or the pressure Laplacian at most, "
+                      ">= 1.");
     prm.declare_entry("Reuse",
                       "true",
                       Patterns::Bool(),

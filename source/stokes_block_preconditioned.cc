@@ -1,6 +1,7 @@
 // Stokes solver/Method = block preconditioned: FGMRES with a block
-// triangular preconditioner, AMG for the velocity block and the 1/η-weighted
-// pressure mass matrix for the Schur complement (doc/numerics.md).
+// triangular preconditioner, AMG or GMG for the velocity block and, for the
+// Schur complement, the 1/η-weighted pressure mass matrix plus, with a mass
+// term, the pressure Laplacian (Cahouet & Chabard; doc/numerics.md).
 #include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/lac/affine_constraints.templates.h>
@@ -31,11 +32,49 @@ namespace viscofilm
 {
   namespace
   {
+    /// cg.solve(…), or a message naming the inner solve @p what and its
+    /// iteration limit @p parameter if it does not converge (not FGMRES's
+    /// NoConvergence, which the outer loop answers with expensive iterations).
+    template <typename Solve>
+    void
+    inner_solve(const Solve &solve, const std::string &what, const std::string &parameter)
+    {
+      try
+        {
+          solve();
+        }
+      catch (const SolverControl::NoConvergence &e)
+        {
+          throw ExcMessage("the Stokes preconditioner's " + what + " did not converge in " +
+                           std::to_string(e.last_step) + " iterations: residual " +
+                           Utilities::to_string(e.last_residual) +
+                           " (Stokes solver/Preconditioner/" + parameter + ")");
+        }
+    }
+
+
+    /// The Schur complement's mass-term part m L_p^{-1} (the pressure
+    /// Laplacian, its AMG and m; m zero: no mass term, or no Laplacian) and
+    /// the pressure scaling.
+    struct PressureLaplacian
+    {
+      const TrilinosWrappers::SparseMatrix *  matrix           = nullptr;
+      const TrilinosWrappers::PreconditionAMG *amg              = nullptr;
+      double                                   mass_coefficient = 0;
+      /// s of the system's scaled pressure p/s (BlockPreconditioned's
+      /// pressure_scaling): its Schur complement is s² S.
+      double pressure_scaling = 1;
+    };
+
+
     /**
      * Block upper-triangular preconditioner for [A B^T; B 0] (step-55's
-     * approach): the Schur complement B A^{-1} B^T is replaced by the
-     * (1/η)-weighted pressure mass matrix, which is spectrally equivalent to
-     * it for variable viscosity, and A^{-1} by multigrid cycles (AMG or GMG,
+     * approach) with A = m M + A_η, m = ρ/k: the inverse of the Schur
+     * complement B A^{-1} B^T is replaced by Cahouet & Chabard's
+     * M_{1/η}^{-1} + m L_p^{-1}, the (1/η)-weighted pressure mass matrix
+     * (spectrally equivalent to B A_η^{-1} B^T for variable viscosity) and
+     * the pressure Laplacian L_p ≈ B M^{-1} B^T (the limit m A_η^{-1} → 0, a
+     * water step much shorter than ρ h²/η), and A^{-1} by multigrid cycles (AMG or GMG,
      * cheap) or by a CG solve preconditioned with them (expensive, ASPECT's
      * fallback for hard cases such as hanging nodes at large viscosity
      * contrasts). FGMRES tolerates that the inner CG solves make it vary from
@@ -50,33 +89,51 @@ namespace viscofilm
         const TrilinosWrappers::SparseMatrix &     weighted_mass,
         const VelocityPreconditioner &             velocity_amg,
         const TrilinosWrappers::PreconditionJacobi &mass_jacobi,
+        const PressureLaplacian &                   laplacian,
         const typename StokesSolver<dim>::Parameters & parameters,
         const bool                                  expensive)
         : system_matrix(system_matrix)
         , weighted_mass(weighted_mass)
         , velocity_amg(velocity_amg)
         , mass_jacobi(mass_jacobi)
+        , laplacian(laplacian)
         , parameters(parameters)
         , expensive(expensive)
         , velocity_rhs(system_matrix.block(0, 1).locally_owned_range_indices(),
                        system_matrix.get_mpi_communicator())
+        , pressure_update(system_matrix.block(1, 0).locally_owned_range_indices(),
+                          system_matrix.get_mpi_communicator())
       {}
 
       void
       vmult(TrilinosWrappers::MPI::BlockVector &      dst,
             const TrilinosWrappers::MPI::BlockVector &src) const
       {
-        // Pressure: −S z_p = r_p with S ≈ (1/η) M_p. A loose inner tolerance
-        // suffices: the mass matrix is only an approximation of S anyway.
+        // Pressure: −z_p = (M_{1/η}^{-1} + m L_p^{-1}) r_p / s². A loose
+        // inner tolerance suffices: the sum is only an approximation of S^{-1}.
         {
-          const double norm = src.block(1).l2_norm();
-          SolverControl control(parameters.schur_inner_iterations,
-                                parameters.schur_inner_tolerance * norm);
-          SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-          dst.block(1) = 0;
-          if (norm > 0)
-            cg.solve(weighted_mass, dst.block(1), src.block(1), mass_jacobi);
-          dst.block(1) *= -1.0;
+          const auto schur_solve = [&](const TrilinosWrappers::SparseMatrix &matrix,
+                                       const auto &                          preconditioner,
+                                       const TrilinosWrappers::MPI::Vector & rhs,
+                                       TrilinosWrappers::MPI::Vector &       result) {
+            const double  norm = rhs.l2_norm();
+            SolverControl control(parameters.schur_inner_iterations,
+                                  parameters.schur_inner_tolerance * norm);
+            SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+            result = 0;
+            if (norm > 0)
+              inner_solve([&] { cg.solve(matrix, result, rhs, preconditioner); },
+                          "Schur complement CG",
+                          "Schur inner iterations = " +
+                            std::to_string(parameters.schur_inner_iterations));
+          };
+          schur_solve(weighted_mass, mass_jacobi, src.block(1), dst.block(1));
+          if (laplacian.mass_coefficient > 0)
+            {
+              schur_solve(*laplacian.matrix, *laplacian.amg, src.block(1), pressure_update);
+              dst.block(1).add(laplacian.mass_coefficient, pressure_update);
+            }
+          dst.block(1) *= -1.0 / (laplacian.pressure_scaling * laplacian.pressure_scaling);
         }
         // Velocity: A z_u = r_u − B^T z_p.
         {
@@ -89,7 +146,13 @@ namespace viscofilm
                                       velocity_rhs.l2_norm());
               SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
               dst.block(0) = 0;
-              cg.solve(system_matrix.block(0, 0), dst.block(0), velocity_rhs, velocity_amg);
+              inner_solve(
+                [&] {
+                  cg.solve(system_matrix.block(0, 0), dst.block(0), velocity_rhs, velocity_amg);
+                },
+                "velocity block CG",
+                "Velocity inner iterations = " +
+                  std::to_string(parameters.velocity_inner_iterations));
             }
           else
             velocity_amg.vmult(dst.block(0), velocity_rhs);
@@ -101,11 +164,14 @@ namespace viscofilm
       const TrilinosWrappers::SparseMatrix &      weighted_mass;
       const VelocityPreconditioner &              velocity_amg;
       const TrilinosWrappers::PreconditionJacobi &mass_jacobi;
+      const PressureLaplacian &                   laplacian;
       const typename StokesSolver<dim>::Parameters & parameters;
       const bool                                  expensive;
-      /// The velocity block's right-hand side, one vector for all calls (a
-      /// new one per call costs its allocation every outer iteration).
+      /// The velocity block's right-hand side and m L_p^{-1} r_p, one vector
+      /// each for all calls (a new one per call costs its allocation every
+      /// outer iteration).
       mutable TrilinosWrappers::MPI::Vector velocity_rhs;
+      mutable TrilinosWrappers::MPI::Vector pressure_update;
     };
 
 
@@ -435,6 +501,34 @@ namespace viscofilm
       /// decided in reinit().
       bool use_multigrid = false;
       std::unique_ptr<TrilinosWrappers::PreconditionJacobi> mass_jacobi;
+
+      /// The pressure Laplacian L_p (block (1, 1)) of the Schur complement's
+      /// mass-term part: Neumann where the velocity is given, zero pressure
+      /// where the normal traction is, the first pressure dof pinned where no
+      /// boundary fixes the pressure level (laplacian_constraints). It
+      /// depends on the mesh only: assembled with the first matrix that has a
+      /// mass term. Not for a discontinuous pressure, whose cell-wise
+      /// (∇q, ∇p) is no Laplacian.
+      bool                                               continuous_pressure = true;
+      AffineConstraints<double>                          laplacian_constraints;
+      TrilinosWrappers::BlockSparseMatrix                laplacian_matrix;
+      std::unique_ptr<TrilinosWrappers::PreconditionAMG> laplacian_amg;
+
+      /**
+       * The system is solved for (u, p/s), its divergence rows times s, s =
+       * ηs(φ = 0) / L with L the smallest extent of the coarse mesh's
+       * bounding box (ASPECT's pressure scaling): both blocks of the residual
+       * are then of one size, so FGMRES's relative residual (`Tolerance`)
+       * means the same in any units, and a problem in SI takes the
+       * iterations of its dimensionless twin.
+       */
+      double pressure_scaling = 1;
+
+      bool
+      assembles_laplacian(const double mass) const
+      {
+        return continuous_pressure && mass > 0 && !laplacian_amg;
+      }
     };
 
 
@@ -464,6 +558,7 @@ namespace viscofilm
       if (!use_multigrid)
         multigrid.reset();
       mass_jacobi.reset();
+      laplacian_amg.reset();
       viscosity_at_build.clear();
       rebuild_requested = false;
       system_matrix.clear();
@@ -491,6 +586,46 @@ namespace viscofilm
       };
       reinit(coupling, system_matrix);
       reinit(mass_coupling, preconditioner_matrix);
+
+      // Level 0 is on every rank.
+      std::vector<Point<dim>> coarse_vertices;
+      for (const auto &cell : dofs.get_triangulation().cell_iterators_on_level(0))
+        for (const unsigned int v : cell->vertex_indices())
+          coarse_vertices.push_back(cell->vertex(v));
+      const BoundingBox<dim> box(coarse_vertices);
+      double                 extent = box.side_length(0);
+      for (unsigned int d = 1; d < dim; ++d)
+        extent = std::min(extent, box.side_length(d));
+      pressure_scaling = model.viscosity(0.0) / extent;
+
+      continuous_pressure = dofs.get_fe().base_element(1).conforms(FiniteElementData<dim>::H1);
+      laplacian_matrix.clear();
+      if (continuous_pressure)
+        {
+          reinit(mass_coupling, laplacian_matrix);
+          const IndexSet relevant = DoFTools::extract_locally_relevant_dofs(dofs);
+          laplacian_constraints.clear();
+          laplacian_constraints.reinit(relevant);
+          DoFTools::make_hanging_node_constraints(dofs, laplacian_constraints);
+          const std::set<types::boundary_id> traction = boundary_conditions.traction_boundary_ids();
+          const IndexSet                     boundary_pressure =
+            traction.empty() ?
+              IndexSet(dofs.n_dofs()) :
+              DoFTools::extract_boundary_dofs(dofs,
+                                              dofs.get_fe().component_mask(
+                                                FEValuesExtractors::Scalar(dim)),
+                                              traction);
+          for (const types::global_dof_index i : boundary_pressure)
+            if (!laplacian_constraints.is_constrained(i))
+              laplacian_constraints.add_line(i);
+          // As StokesSolver::make_constraints pins it for a factorisation: a
+          // coarse-mesh vertex, never hanging.
+          const types::global_dof_index first_pressure_dof = owned_partitioning[0].size();
+          if (traction.empty() && relevant.is_element(first_pressure_dof))
+            laplacian_constraints.add_line(first_pressure_dof);
+          boundary_conditions.constrain_periodic(dofs, laplacian_constraints);
+          laplacian_constraints.close();
+        }
 
       if (geometric_multigrid())
         {
@@ -533,6 +668,8 @@ namespace viscofilm
     {
       system_matrix         = 0;
       preconditioner_matrix = 0;
+      if (continuous_pressure && !laplacian_amg)
+        laplacian_matrix = 0;
       subcell_sources.clear();
       viscosity_now.clear();
       change_integrals[0] = change_integrals[1] = 0;
@@ -561,6 +698,16 @@ namespace viscofilm
               cell_mass(pressure_dofs[i], pressure_dofs[j]) +=
                 phi_p[i] * phi_p[j] / cell.viscosity[q] * fe_values.JxW(q);
         }
+
+      FullMatrix<double> &cell_laplacian = cell.pressure_laplacian;
+      const unsigned int  n_laplacian =
+        assembles_laplacian(cell.mass_coefficient) ? dofs_per_cell : 0;
+      cell_laplacian.reinit(n_laplacian, n_laplacian);
+      for (unsigned int q = 0; q < fe_values.n_quadrature_points && n_laplacian > 0; ++q)
+        for (const unsigned int i : pressure_dofs)
+          for (const unsigned int j : pressure_dofs)
+            cell_laplacian(i, j) += fe_values[pressure].gradient(i, q) *
+                                    fe_values[pressure].gradient(j, q) * fe_values.JxW(q);
     }
 
 
@@ -573,6 +720,11 @@ namespace viscofilm
       constraints.distribute_local_to_global(cell.preconditioner_matrix,
                                              cell.dof_indices,
                                              preconditioner_matrix);
+      if (!cell.pressure_laplacian.empty())
+        laplacian_constraints.distribute_local_to_global(cell.pressure_laplacian,
+                                                         cell.dof_indices,
+                                                         laplacian_matrix);
+      mass_coefficient = cell.mass_coefficient;
 
       if (geometric_multigrid())
         {
@@ -582,7 +734,6 @@ namespace viscofilm
           for (unsigned int q = 0; q < cell.JxW.size(); ++q)
             viscosity[q] = 2 * cell.viscosity[q];
           multigrid->set_cell_viscosity(cell.cell, viscosity, cell.JxW);
-          mass_coefficient = cell.mass_coefficient;
         }
       else if (uses_subcell_matrix())
         {
@@ -592,7 +743,6 @@ namespace viscofilm
              std::accumulate(cell.elastic_viscosity.begin(), cell.elastic_viscosity.end(), 0.0) /
                cell.elastic_viscosity.size()});
           volume_fraction   = cell.volume_fraction;
-          mass_coefficient  = cell.mass_coefficient;
           this->constraints = &constraints;
         }
 
@@ -619,7 +769,20 @@ namespace viscofilm
     BlockPreconditioned<dim>::finish_matrix()
     {
       system_matrix.compress(VectorOperation::add);
+      system_matrix.block(0, 1) *= pressure_scaling;
+      system_matrix.block(1, 0) *= pressure_scaling;
       preconditioner_matrix.compress(VectorOperation::add);
+      // The same on every rank, one without cells too (collective solves).
+      mass_coefficient = Utilities::MPI::max(mass_coefficient, mpi_communicator);
+      if (assembles_laplacian(mass_coefficient))
+        {
+          laplacian_matrix.compress(VectorOperation::add);
+          TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
+          amg_data.elliptic = true;
+          laplacian_amg     = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+          laplacian_amg->initialize(laplacian_matrix.block(1, 1), amg_data);
+        }
+
       mass_preconditioner_is_current = false;
       first_solve_with_matrix        = true;
       // Keep the AMG while it still fits the new matrix (Reuse).
@@ -723,7 +886,14 @@ namespace viscofilm
 
       // FGMRES from `solution` with at most n_cheap cheap iterations, then
       // (if `go_on`) expensive ones; true if it converged.
-      const double target     = tolerance * rhs.l2_norm();
+      const PressureLaplacian laplacian{laplacian_amg ? &laplacian_matrix.block(1, 1) : nullptr,
+                                        laplacian_amg.get(),
+                                        laplacian_amg ? mass_coefficient : 0.0,
+                                        pressure_scaling};
+      // The divergence rows times s, as the matrix's (pressure_scaling).
+      TrilinosWrappers::MPI::BlockVector scaled_rhs = rhs;
+      scaled_rhs.block(1) *= pressure_scaling;
+      const double target     = tolerance * scaled_rhs.l2_norm();
       unsigned int iterations = 0;
       const auto   fgmres     = [&](const unsigned int n_cheap, const bool go_on) {
         for (const bool expensive : {false, true})
@@ -739,9 +909,10 @@ namespace viscofilm
                                preconditioner_matrix.block(1, 1),
                                velocity_preconditioner,
                                *mass_jacobi,
+                               laplacian,
                                parameters,
                                expensive);
-              solver.solve(system_matrix, solution, rhs, preconditioner);
+              solver.solve(system_matrix, solution, scaled_rhs, preconditioner);
             };
             try
               {
@@ -773,6 +944,7 @@ namespace viscofilm
         {
           solution = guess; // the last solution as first guess
           constraints.set_zero(solution);
+          solution.block(1) /= pressure_scaling;
           const unsigned int n_cheap =
             std::min(parameters.max_iterations, parameters.cheap_iterations);
           // A reused AMG gets twice Rebuild iteration growth × the iterations
@@ -794,6 +966,7 @@ namespace viscofilm
               // got with expensive ones (ASPECT's strategy).
               fgmres(n_cheap, true);
             }
+          solution.block(1) *= pressure_scaling;
         }
       // The iteration criterion of Reuse, on like solves: the first with each
       // new matrix (later Picard iterations start from better guesses).

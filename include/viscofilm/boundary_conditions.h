@@ -15,6 +15,7 @@
 #include <viscofilm/geometry.h>
 #include <viscofilm/input.h>
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -91,9 +92,14 @@ namespace viscofilm
     constrain_periodic(const DoFHandler<dim> &    dof_handler,
                        AffineConstraints<double> &constraints) const;
 
-    /// A boundary with a prescribed normal traction (outflow, pressure,
-    /// traction free) fixes the pressure level; otherwise the pressure is
-    /// determined up to a constant (mean zero).
+    /// The boundaries with a prescribed normal traction (outflow, pressure,
+    /// traction free): where the pressure is data, not a velocity's.
+    std::set<types::boundary_id>
+    traction_boundary_ids() const;
+
+    /// A boundary with a prescribed normal traction fixes the pressure
+    /// level; otherwise the pressure is determined up to a constant (mean
+    /// zero).
     bool
     fixes_pressure_level() const;
 

@@ -43,9 +43,11 @@ namespace viscofilm
     double                               mass_coefficient = 0;
     std::vector<types::global_dof_index> dof_indices;
     FullMatrix<double>                   matrix;
-    /// The strategy's own cell matrix, from add_cell_preconditioner() on the
-    /// worker thread (the block preconditioner's (1/η) M_p); empty otherwise.
+    /// The strategy's own cell matrices, from add_cell_preconditioner() on
+    /// the worker thread (the block preconditioner's (1/η) M_p and, with a
+    /// mass term, the pressure Laplacian (∇q, ∇p)); empty otherwise.
     FullMatrix<double> preconditioner_matrix;
+    FullMatrix<double> pressure_laplacian;
   };
 
 
