@@ -44,7 +44,8 @@ in every row of the run(s), and "file.csv:max(column)<value" (or sum) for the
 largest value or the sum over the rows: a check against a stated limit,
 whatever the reference says. "file.csv[step>N]:..." checks only the rows
 after step N ([step>0]: after the initial state); any column and < work
-alike ("statistics.csv[time<0.1]:time_step<0.01"). "file.csv:a+b-c<value"
+alike ("statistics.csv[time<0.1]:time_step<0.01"). A bound that selects no
+row fails. "file.csv:a+b-c<value"
 bounds the sum of columns a and b minus column c in each row (a balance).
 
 --data FILE (repeatable) copies FILE into the work directory before the run:
@@ -160,6 +161,8 @@ def check_bounds(opts, directory):
             rows = [row for row in rows
                     if (float(row[row_column]) > float(row_limit) if row_relation == ">"
                         else float(row[row_column]) < float(row_limit))]
+        if not rows:
+            fail("%s: the bound %s selects no row (a check of nothing)" % (filename, bound))
         reduction = re.fullmatch(r"(max|sum)\((\w+)\)", column)
         if reduction:
             values = [float(row[reduction.group(2)]) for row in rows]
