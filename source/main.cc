@@ -6,6 +6,7 @@
 #include <viscofilm/input.h>
 #include <viscofilm/parameters.h>
 #include <viscofilm/problem.h>
+#include <viscofilm/version.h>
 
 #include <filesystem>
 #include <fstream>
@@ -24,6 +25,8 @@ namespace
     "       viscofilm --validate FILE.prm   check FILE.prm and exit\n"
     "       viscofilm --print-parameters    print every parameter with its\n"
     "                                       documentation and default\n"
+    "       viscofilm --version             print the source revision, build type\n"
+    "                                       and the deal.II and Trilinos versions\n"
     "       viscofilm --help                print this message\n"
     "Run in parallel with: mpirun -np N viscofilm FILE.prm\n"
     "Threads per MPI rank (assembly): viscofilm --threads T FILE.prm; default\n"
@@ -305,6 +308,13 @@ main(int argc, char *argv[])
     {
       if (is_root)
         std::cout << usage;
+      return 0;
+    }
+
+  if (args.size() == 1 && args[0] == "--version")
+    {
+      if (is_root)
+        std::cout << build_description() << std::endl;
       return 0;
     }
 

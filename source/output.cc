@@ -6,6 +6,7 @@
 
 #include <viscofilm/input.h>
 #include <viscofilm/output.h>
+#include <viscofilm/version.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/stress.h>
 #include <viscofilm/volume_fraction.h>
@@ -157,7 +158,10 @@ namespace viscofilm
                     parameters.directory + "\"" +
                     (error ? ": " + error.message() : std::string());
         else
-          prm.print_parameters(used, ParameterHandler::ShortPRM);
+          {
+            used << "# " << run_description(mpi_communicator) << "\n";
+            prm.print_parameters(used, ParameterHandler::ShortPRM);
+          }
       }
     failure = Utilities::MPI::broadcast(mpi_communicator, failure, 0);
     AssertThrow(failure.empty(), ExcInput(failure));

@@ -7,6 +7,7 @@
 
 #include <viscofilm/input.h>
 #include <viscofilm/problem.h>
+#include <viscofilm/version.h>
 
 #include <algorithm>
 #include <chrono>
@@ -596,6 +597,7 @@ namespace viscofilm
   void
   Problem<dim>::run_time_loop()
   {
+    pcout << run_description(mpi_communicator) << std::endl;
     parameters.model.print(pcout);
     const double end_time =
       parameters.time_stepping.n_steps * parameters.time_stepping.time_step;
