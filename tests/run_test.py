@@ -45,7 +45,7 @@ largest value or the sum over the rows: a check against a stated limit,
 whatever the reference says. "file.csv[step>N]:..." checks only the rows
 after step N ([step>0]: after the initial state); any column and < work
 alike ("statistics.csv[time<0.1]:time_step<0.01"). A bound that selects no
-row fails. "file.csv:a+b-c<value"
+row fails (in mode convergence: no row of any run). "file.csv:a+b-c<value"
 bounds the sum of columns a and b minus column c in each row (a balance).
 
 --data FILE (repeatable) copies FILE into the work directory before the run:
@@ -147,9 +147,11 @@ def compare(opts, text, workdir):
     print("output matches %s (%s)" % (opts.reference, opts.numdiff))
 
 
-def check_bounds(opts, directory):
+def check_bounds(opts, directory, selected=None):
     """Each bound holds at every row, or, for max(column) and sum(column), for
-    the largest value or the sum over the rows."""
+    the largest value or the sum over the rows. A bound whose row filter
+    selects no row fails, unless @p selected (a set) collects the bounds that
+    selected rows, for the caller to check over several runs."""
     for bound in opts.bound:
         match = re.fullmatch(r"([^[]+)(?:\[(\w+)([<>])([^]]+)\])?:"
                              r"(\w+(?:[+-]\w+)*|max\(\w+\)|sum\(\w+\))([<>])(.+)", bound)
@@ -162,7 +164,11 @@ def check_bounds(opts, directory):
                     if (float(row[row_column]) > float(row_limit) if row_relation == ">"
                         else float(row[row_column]) < float(row_limit))]
         if not rows:
-            fail("%s: the bound %s selects no row (a check of nothing)" % (filename, bound))
+            if selected is None:
+                fail("%s: the bound %s selects no row (a check of nothing)" % (filename, bound))
+            continue
+        if selected is not None:
+            selected.add(bound)
         reduction = re.fullmatch(r"(max|sum)\((\w+)\)", column)
         if reduction:
             values = [float(row[reduction.group(2)]) for row in rows]
@@ -227,6 +233,7 @@ def mode_convergence(opts, workdir):
     levels = list(zip(*[values for _, values in varied]))
     min_rates = dict(item.split("=") for item in opts.min_rates.split(","))
     errors = {name: [] for name in min_rates}
+    selected = set()  # the bounds that selected rows in some run
     for run, level in enumerate(levels):
         text = template
         for (name, _), value in zip(varied, level):
@@ -242,9 +249,12 @@ def mode_convergence(opts, workdir):
             fail("viscofilm exited with %d for %s:\n%s"
                  % (result.returncode, ", ".join(level), result.stderr))
         directory = output_directory(workdir, prm)
-        check_bounds(opts, directory)
+        check_bounds(opts, directory, selected)
         for name in errors:
             errors[name].append(observed_values(directory, name))
+    for bound in opts.bound:
+        if bound not in selected:
+            fail("the bound %s selects no row in any run (a check of nothing)" % bound)
     for name, values in errors.items():
         if opts.differences:
             errors[name] = [max(abs(a - b) for a, b in zip(values[i], values[i + 1]))
