@@ -603,12 +603,14 @@ namespace viscofilm
       if (continuous_pressure)
         {
           reinit(mass_coupling, laplacian_matrix);
-          const IndexSet relevant = DoFTools::extract_locally_relevant_dofs(dofs);
+          // The Stokes constraints' locally relevant dofs.
+          const IndexSet &relevant = constraints.get_local_lines();
           laplacian_constraints.clear();
           laplacian_constraints.reinit(relevant);
           DoFTools::make_hanging_node_constraints(dofs, laplacian_constraints);
           const std::set<types::boundary_id> traction = boundary_conditions.traction_boundary_ids();
-          const IndexSet                     boundary_pressure =
+          // (No traction boundary: none; deal.II reads an empty set as all.)
+          const IndexSet boundary_pressure =
             traction.empty() ?
               IndexSet(dofs.n_dofs()) :
               DoFTools::extract_boundary_dofs(dofs,
