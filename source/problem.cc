@@ -305,6 +305,10 @@ namespace viscofilm
     // boundary data at t = 0 (the solver's u = 0 is none: the first step's
     // feet and its rate of deformation at t_0 need it). With Res > 0, u = 0
     // is the initial condition.
+    if (parameters.model.density > 0 && stokes.check_initial_velocity())
+      pcout << "Note: the velocity boundary data at t = 0 are not zero, so the initial "
+               "condition u = 0 is an impulsive start."
+            << std::endl;
     if (parameters.time_stepping.order == 2 && parameters.model.density == 0)
       {
         time_step = parameters.time_stepping.time_step; // enters no term at Res = 0

@@ -488,6 +488,27 @@ namespace viscofilm
 
 
   template <int dim>
+  bool
+  StokesSolver<dim>::check_initial_velocity()
+  {
+    unsigned int misses = 0;
+    for (const types::global_dof_index i : dofs.locally_owned_dofs())
+      if (constraints.is_inhomogeneously_constrained(i))
+        misses = 1;
+    impulsive_start = Utilities::MPI::max(misses, mpi_communicator) > 0;
+    return impulsive_start;
+  }
+
+
+  template <int dim>
+  bool
+  StokesSolver<dim>::old_velocity_is_impulsive_start() const
+  {
+    return impulsive_start && previous_step == 0;
+  }
+
+
+  template <int dim>
   void
   StokesSolver<dim>::set_previous_time_step(const double time_step)
   {

@@ -701,6 +701,12 @@ namespace viscofilm
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
                                               triangulation.get_communicator());
     double largest[3] = {0, 0, 0}; // ‖τ₂ − τ₁‖, ‖τ₂‖, G |c_rest| (Order 2)
+    // The first step of an impulsive start (Res > 0, u^0 = 0 and boundary
+    // data that are not at t = 0): the flow leaves u^0 within a time of
+    // order Res, and a mean with ∇u^0 would be an O(k) error that stays
+    // (rate 1 in channel_startup_inertia_order2). ∇u^{n+1} alone errs by
+    // O(k²), once.
+    const bool impulsive = stokes.old_velocity_is_impulsive_start();
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
         // E = (I − kΦ)^{-1} (eq. 3.42) or its Cayley form.
@@ -727,7 +733,7 @@ namespace viscofilm
             // tends to the quasi-steady c = β/α (I + (Φ + Φᵀ)/μ), which a
             // Strang splitting of relaxation and deformation misses.
             const Tensor<2, dim> E_mid =
-              cayley(0.5 * k * (Phi + deformation_rate(nodes[i].foot_velocity_gradient)));
+              cayley(0.5 * k * (Phi + (impulsive ? Phi : deformation_rate(nodes[i].foot_velocity_gradient))));
             // (βk/w) C(μk) = (β/α) μk C(μk): bounded as w → 0 (α > 0).
             const auto [decay, at_start, at_end] =
               r.weight > 0 ? exponential_weights(r.alpha * k / r.weight) :

@@ -205,6 +205,17 @@ namespace viscofilm
     double
     previous_time_step() const;
 
+    /// Res > 0, before the first step (after setup_dofs(), which leaves the
+    /// constraints at t = 0): whether the initial condition u = 0 misses the
+    /// velocity boundary data at t = 0, an impulsive start.
+    bool
+    check_initial_velocity();
+
+    /// Order 2: whether u^n is the u = 0 of an impulsive start (the first
+    /// step's), which the flow leaves within a time of order Res.
+    bool
+    old_velocity_is_impulsive_start() const;
+
     /// After a resume: the k_{n-1} the checkpoint recorded.
     void
     set_previous_time_step(const double time_step);
@@ -294,6 +305,7 @@ namespace viscofilm
     const unsigned int                 order;
     double                             step_length   = 0; // k_n, from trace_back()
     double                             previous_step = 0; // k_{n-1}; 0: no u^{n-1}
+    bool                               impulsive_start = false; // check_initial_velocity()
     /// Model::elastic_viscosity at each owned cell's quadrature points, from
     /// the assembly that built the matrix (Implicit elastic viscosity).
     std::vector<double> elastic_viscosity_cache;
