@@ -176,7 +176,8 @@ namespace viscofilm
         cell = next;
       }
     Trace lost;
-    lost.point = b;
+    lost.point  = b;
+    lost.inside = a;
     return lost;
   }
 
@@ -193,6 +194,7 @@ namespace viscofilm
     local.clear();
     remote_points.clear();
     located.resize(n_points);
+    std::vector<Point<dim>> inside; // per remote point: Trace::inside
     for (unsigned int i = 0; i < points.size(); ++i)
       {
         const Trace found = trace(hints[i], origins[i], points[i]);
@@ -206,7 +208,10 @@ namespace viscofilm
             local.push_back({found.cell, found.unit_point, i});
           }
         else
-          remote_points.push_back(i);
+          {
+            remote_points.push_back(i);
+            inside.push_back(found.inside);
+          }
       }
     std::sort(local.begin(), local.end(), [](const LocalPoint &a, const LocalPoint &b) {
       return a.cell < b.cell;
@@ -219,12 +224,47 @@ namespace viscofilm
         std::vector<Point<dim>> remote_locations;
         for (const unsigned int i : remote_points)
           remote_locations.push_back(located[i]);
-        for (const double tolerance : {unit_tolerance, sliver_tolerance})
+        // Whether every rank's points lie in cells; remote holds the search.
+        const auto search = [&]() {
+          for (const double tolerance : {unit_tolerance, sliver_tolerance})
+            {
+              remote = std::make_unique<Utilities::MPI::RemotePointEvaluation<dim>>(tolerance);
+              remote->reinit(remote_locations, triangulation, cell_mapping);
+              if (Utilities::MPI::max(remote->all_points_found() ? 0u : 1u, comm) == 0)
+                return true;
+            }
+          return false;
+        };
+        if (!search())
           {
-            remote = std::make_unique<Utilities::MPI::RemotePointEvaluation<dim>>(tolerance);
-            remote->reinit(remote_locations, triangulation, cell_mapping);
-            if (Utilities::MPI::max(remote->all_points_found() ? 0u : 1u, comm) == 0)
-              break;
+            // A target outside the domain whose walk left this rank's cells
+            // before it reached the boundary (a Newton iterate beyond a wall
+            // at CFL > 1; with one rank the walk cuts it there): the point of
+            // its segment within |segment|/2^10 of the boundary, by bisection
+            // between the walk's last point, in the domain, and the target.
+            std::vector<Point<dim>> outside(remote_locations.size());
+            std::vector<bool>       bisected(remote_locations.size());
+            for (unsigned int round = 0; round <= 10; ++round)
+              {
+                const std::vector<unsigned int> ptrs = remote->get_point_ptrs();
+                for (unsigned int j = 0; j < remote_locations.size(); ++j)
+                  {
+                    const bool found = ptrs[j + 1] > ptrs[j];
+                    if (!bisected[j] && !found)
+                      {
+                        bisected[j] = true;
+                        outside[j]  = remote_locations[j];
+                      }
+                    else if (bisected[j])
+                      (found ? inside[j] : outside[j]) = remote_locations[j];
+                    if (bisected[j])
+                      remote_locations[j] =
+                        round < 10 ? Point<dim>(0.5 * (inside[j] + outside[j])) : inside[j];
+                  }
+                search();
+              }
+            for (unsigned int j = 0; j < remote_locations.size(); ++j)
+              located[remote_points[j]] = remote_locations[j];
           }
       }
   }

@@ -85,8 +85,10 @@ namespace viscofilm
       Point<dim> point;
       unsigned int cut_face = numbers::invalid_unsigned_int;
       /// False: an artificial cell or the step limit stopped the walk; then
-      /// @p point is the target translated across the periodic faces so far.
-      bool found = false;
+      /// @p point is the target translated across the periodic faces so far,
+      /// and @p inside the last point of the walk, which lies in the domain.
+      bool       found = false;
+      Point<dim> inside;
     };
 
     /// Walk from @p cell, which holds @p from, along the segment to @p to,
