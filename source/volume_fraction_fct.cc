@@ -67,7 +67,7 @@ namespace viscofilm
 
 
   template <int dim>
-  void
+  double
   VolumeFraction<dim>::flux_corrected_step(const StokesSolver<dim> &stokes,
                                            const double             time_step,
                                            const bool               estimate_error)
@@ -305,27 +305,15 @@ namespace viscofilm
       }
     Exchange flux;
     substeps(false, flux);
-    exchange.outflow += k * Utilities::MPI::sum(flux.outflow, mpi_communicator);
-    exchange.inflow += k * Utilities::MPI::sum(flux.inflow, mpi_communicator);
+    const double leaving  = k * Utilities::MPI::sum(flux.outflow, mpi_communicator);
+    const double entering = k * Utilities::MPI::sum(flux.inflow, mpi_communicator);
+    exchange.outflow += leaving;
+    exchange.inflow += entering;
     exchange.net = exchange.outflow - exchange.inflow;
     if (estimate_error)
       last_error_estimate = max_difference(current_solution, first_order);
 
-    // The free nodes are bounded; a hanging node takes the coarse face's
-    // Q2 interpolant, which can leave their range by 1/8 of a jump: back
-    // into it as the semi-Lagrangian scheme does, ∫φ kept.
-    if (dofs.get_triangulation().has_hanging_nodes())
-      {
-        double low = std::numeric_limits<double>::max(), high = std::numeric_limits<double>::lowest();
-        for (const types::global_dof_index i : op.row_dofs)
-          {
-            low  = std::min(low, static_cast<double>(current_solution[i]));
-            high = std::max(high, static_cast<double>(current_solution[i]));
-          }
-        restore_mass(integral(),
-                     Utilities::MPI::min(low, mpi_communicator),
-                     Utilities::MPI::max(high, mpi_communicator));
-      }
+    return leaving - entering;
   }
 
 

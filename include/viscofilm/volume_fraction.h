@@ -156,9 +156,10 @@ namespace viscofilm
     void
     set_boundary_exchange(const Exchange &totals);
 
-    /// Smallest and largest nodal value.
+    /// Smallest and largest nodal value (@p free_nodes: of the nodes no
+    /// constraint sets, which a hanging node's interpolant can overshoot).
     std::pair<double, double>
-    range() const;
+    range(const bool free_nodes = false) const;
 
     /// FCT: the sub-steps the last advance() took (its step cut to the
     /// explicit scheme's positivity limit); 1 otherwise.
@@ -251,8 +252,9 @@ namespace viscofilm
     /// FCT: φ^{n+1} from φ^n by SSP-RK3 with the velocity interpolated
     /// linearly between u^n and u^{n+1} at each stage, every stage limited.
     /// @p estimate_error: also the step with u^{n+1} in every stage (first
-    /// order), for error_estimate().
-    void
+    /// order), for error_estimate(). Returns the step's outflow − inflow of
+    /// ∫φ.
+    double
     flux_corrected_step(const StokesSolver<dim> &stokes,
                         const double             time_step,
                         const bool               estimate_error);
