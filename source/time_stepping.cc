@@ -59,8 +59,9 @@ namespace viscofilm
                       "CFL number). > 0, with Order = 2: the largest local "
                       "error estimate of the step's fields (the difference "
                       "of the second-order update from an embedded "
-                      "first-order one; φ: max over its nodes, with either "
-                      "Volume fraction scheme) must stay "
+                      "first-order one; φ: max over its nodes, with the "
+                      "semi-Lagrangian and FCT Volume fraction schemes; the "
+                      "thesis scheme (GLS) gives none) must stay "
                       "below this, or the step is redone shorter; Time step "
                       "and CFL number bound the step from above "
                       "(doc/numerics.md, \"Error-controlled time steps\").");
