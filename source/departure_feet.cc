@@ -85,7 +85,7 @@ namespace viscofilm
         std::optional<Point<dim>> mapped_b = unit_point(cell_mapping, cell, b);
         if (mapped_b &&
             GeometryInfo<dim>::distance_to_unit_cell(*mapped_b) < unit_tolerance)
-          return {cell, *mapped_b, b, numbers::invalid_unsigned_int, true};
+          return {cell, *mapped_b, b, numbers::invalid_unsigned_int, true, {}};
         // Where b is too far from a distorted cell for the inverse map,
         // aim at a point of the segment closer to a; if that point is still
         // in the cell, walk on from it.
@@ -126,7 +126,7 @@ namespace viscofilm
               }
           }
         if (face == numbers::invalid_unsigned_int) // b within round-off of the cell
-          return {cell, unit_b, b, numbers::invalid_unsigned_int, true};
+          return {cell, unit_b, b, numbers::invalid_unsigned_int, true, {}};
         Point<dim> unit_exit = unit_a + exit * (unit_b - unit_a);
         unit_exit[face / 2]  = face % 2;
         unit_exit = GeometryInfo<dim>::project_to_unit_cell(unit_exit);
@@ -149,7 +149,7 @@ namespace viscofilm
             b += period;
           }
         else if (cell->at_boundary(face))
-          return {cell, unit_exit, crossing, face, true}; // the cut
+          return {cell, unit_exit, crossing, face, true, {}}; // the cut
         else
           {
             next = cell->neighbor(face);
@@ -239,9 +239,12 @@ namespace viscofilm
           {
             // A target outside the domain whose walk left this rank's cells
             // before it reached the boundary (a Newton iterate beyond a wall
-            // at CFL > 1; with one rank the walk cuts it there): the point of
-            // its segment within |segment|/2^10 of the boundary, by bisection
-            // between the walk's last point, in the domain, and the target.
+            // at CFL > 1; with one rank the walk cuts it there): evaluated at
+            // the point of its segment within |segment|/2^10 of the boundary,
+            // by bisection between the walk's last point, in the domain, and
+            // the target. Not a cut: the caller is not told, so such a foot
+            // takes the field next to the boundary, not inflow data (at a
+            // no-slip wall, where Newton iterates run off, the two agree).
             std::vector<Point<dim>> outside(remote_locations.size());
             std::vector<bool>       bisected(remote_locations.size());
             for (unsigned int round = 0; round <= 10; ++round)

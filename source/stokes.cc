@@ -504,7 +504,7 @@ namespace viscofilm
   bool
   StokesSolver<dim>::old_velocity_is_impulsive_start() const
   {
-    return impulsive_start && previous_step == 0;
+    return order == 2 && impulsive_start && previous_step == 0;
   }
 
 

@@ -702,7 +702,7 @@ namespace viscofilm
                                               triangulation.get_communicator());
     double largest[3] = {0, 0, 0}; // ‖τ₂ − τ₁‖, ‖τ₂‖, G |c_rest| (Order 2)
     // The first step of an impulsive start (Res > 0, u^0 = 0 and boundary
-    // data that are not at t = 0): the flow leaves u^0 within a time of
+    // data that are not zero at t = 0): the flow leaves u^0 within a time of
     // order Res, and a mean with ∇u^0 would be an O(k) error that stays
     // (rate 1 in channel_startup_inertia_order2). ∇u^{n+1} alone errs by
     // O(k²), once.

@@ -237,7 +237,8 @@ namespace viscofilm
         // fronts, within the free nodes' range: ∫φ + outflow − inflow is
         // kept to round-off (it gained 1.0e-5 of ∫φ over the default case
         // without).
-        const double mass = integral() - flux_corrected_step(stokes, time_step, estimate_error);
+        const double before = integral();
+        const double mass   = before - flux_corrected_step(stokes, time_step, estimate_error);
         const unsigned int iterations =
           diffusion > 0 ? bounded_diffusion_step(diffusion, time_step) : 0;
         const auto [low, high] = range(true);

@@ -58,7 +58,10 @@ namespace viscofilm
    * through a boundary face is cut there (the point becomes the crossing),
    * one that leaves through a periodic face continues on the partner side,
    * translated by the period (the point becomes its periodic image in the
-   * mesh). No description of the domain is needed, only its cells.
+   * mesh). No description of the domain is needed, only its cells. A
+   * segment that leaves the rank's cells (beyond the ghost layer) and then
+   * the mesh cannot be cut: its point becomes the segment's point next to
+   * the boundary, found by bisection (reinit()).
    */
   template <int dim>
   class PointEvaluator
@@ -108,7 +111,8 @@ namespace viscofilm
            std::vector<typename Triangulation<dim>::active_cell_iterator> &hints);
 
     /// The points of the last reinit() where they were evaluated: cut at
-    /// the boundary, translated across periodic faces.
+    /// (or, beyond the ghost layer, bisected to) the boundary, translated
+    /// across periodic faces.
     const std::vector<Point<dim>> &
     located_points() const;
 
