@@ -301,14 +301,15 @@ namespace viscofilm
             << min_cell_size << std::endl;
     stress.set_initial_conditions(parameters.initial_conditions.stress.at(0), volume_fraction);
     stokes.invalidate_matrix();
-    // Order 2 with Res = 0: u^0 is the flow of the initial state and the
-    // boundary data at t = 0 (the solver's u = 0 is none: the first step's
-    // feet and its rate of deformation at t_0 need it). With Res > 0, u = 0
-    // is the initial condition.
+    // With Res > 0, u = 0 is the initial condition; boundary data that are
+    // not zero at t = 0 make it an impulsive start (ElasticStress::update).
     if (parameters.model.density > 0 && stokes.check_initial_velocity())
       pcout << "Note: the velocity boundary data at t = 0 are not zero, so the initial "
                "condition u = 0 is an impulsive start."
             << std::endl;
+    // Order 2 with Res = 0: u^0 is the flow of the initial state and the
+    // boundary data at t = 0 (the solver's u = 0 is none: the first step's
+    // feet and its rate of deformation at t_0 need it).
     if (parameters.time_stepping.order == 2 && parameters.model.density == 0)
       {
         time_step = parameters.time_stepping.time_step; // enters no term at Res = 0
