@@ -220,7 +220,8 @@ namespace viscofilm
 
   template <int dim>
   void
-  BoundaryConditions<dim>::constrain_velocity(const DoFHandler<dim> & dof_handler,
+  BoundaryConditions<dim>::constrain_velocity(const Mapping<dim> &     mapping,
+                                              const DoFHandler<dim> &    dof_handler,
                                          const double               time,
                                          AffineConstraints<double> &constraints,
                                          const bool                 homogeneous) const
@@ -242,10 +243,8 @@ namespace viscofilm
           const StokesVelocity<dim> velocity(velocity_now, n_components);
 
           if (type == Type::slip && boundary.normal_axis < 0)
-            VectorTools::compute_no_normal_flux_constraints(dof_handler,
-                                                            0,
-                                                            {boundary.id},
-                                                            constraints);
+            VectorTools::compute_no_normal_flux_constraints(
+              dof_handler, 0, {boundary.id}, constraints, mapping);
           else if (type == Type::pressure && boundary.normal_axis < 0)
             {
               // Tangential velocity on a boundary not normal to an axis.
@@ -254,7 +253,7 @@ namespace viscofilm
                  homogeneous ? static_cast<const Function<dim> *>(&zero_velocity) :
                                &velocity_now}};
               VectorTools::compute_nonzero_tangential_flux_constraints(
-                dof_handler, 0, {boundary.id}, values, constraints);
+                dof_handler, 0, {boundary.id}, values, constraints, mapping);
             }
           else
             {
@@ -269,10 +268,10 @@ namespace viscofilm
                                                   true);
               if (homogeneous || type == Type::no_slip || type == Type::slip)
                 VectorTools::interpolate_boundary_values(
-                  dof_handler, boundary.id, zero, constraints, mask);
+                  mapping, dof_handler, boundary.id, zero, constraints, mask);
               else
                 VectorTools::interpolate_boundary_values(
-                  dof_handler, boundary.id, velocity, constraints, mask);
+                  mapping, dof_handler, boundary.id, velocity, constraints, mask);
             }
         }
   }
@@ -406,5 +405,25 @@ namespace viscofilm
     return !traction_boundary_ids().empty();
   }
 
+  template <int dim>
+  double
+  mean_normal_velocity(const FEFaceValuesBase<dim> &      stokes_face,
+                       const std::vector<Tensor<1, dim>> &velocity)
+  {
+    double flux = 0, area = 0;
+    for (const unsigned int q : stokes_face.quadrature_point_indices())
+      {
+        flux += velocity[q] * stokes_face.normal_vector(q) * stokes_face.JxW(q);
+        area += stokes_face.JxW(q);
+      }
+    return flux / area;
+  }
+
+
   VISCOFILM_INSTANTIATE(BoundaryConditions)
+#define INSTANTIATE(dim)                                                              \
+  template double mean_normal_velocity<dim>(const FEFaceValuesBase<dim> &,            \
+                                            const std::vector<Tensor<1, dim>> &);
+  VISCOFILM_FOR_EACH_DIM(INSTANTIATE)
+#undef INSTANTIATE
 } // namespace viscofilm

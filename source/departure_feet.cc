@@ -488,7 +488,8 @@ namespace viscofilm
                              const DoFHandler<dim> &                    stokes_dofs,
                              const TrilinosWrappers::MPI::BlockVector & stokes_solution,
                              const double                               max_speed,
-                             FEPointEvaluation<dim, dim> &              velocity) const
+                             FEPointEvaluation<dim, dim> &              velocity,
+                             FEFaceValues<dim> &                        face_normals) const
   {
     std::vector<double> dof_values(stokes_dofs.get_fe().n_dofs_per_cell());
     cell_of(stokes_dofs, cut.cell)->get_dof_values(stokes_solution, dof_values.begin(), dof_values.end());
@@ -500,7 +501,16 @@ namespace viscofilm
     for (unsigned int e = 0; e < dim; ++e)
       normal[e] = velocity.inverse_jacobian(0)[f / 2][e];
     normal *= (f % 2 == 0 ? -1. : 1.) / normal.norm();
-    return velocity.get_value(0) * normal < -inflow_threshold * max_speed;
+    // A flow that follows a curved wall crosses the wall's quadratic image
+    // at an angle of the order of the face's turning squared (an arc of
+    // angle θ is approximated to O(θ²) in slope): a cut at a smaller angle
+    // is no inflow. On a plane face the turning is zero.
+    face_normals.reinit(cut.cell, f);
+    double turning = 0;
+    for (const unsigned int q : face_normals.quadrature_point_indices())
+      turning = std::max(turning, (face_normals.normal_vector(q) - normal).norm_square());
+    const Tensor<1, dim> u = velocity.get_value(0);
+    return u * normal < -std::max(inflow_threshold * max_speed, turning * u.norm());
   }
 
 
@@ -625,11 +635,16 @@ namespace viscofilm
     unsigned int iteration     = 0; // rounds: Newton steps and halvings
     unsigned int n_left_domain = 0;
     double       max_speed     = 0; // at the points (the first midpoints)
-    // u at the cuts, for the inflow test (enters()): one evaluator per call.
+    // u at the cuts and the cut faces' normals, for the inflow test
+    // (enters()): one evaluator each per call.
     FEPointEvaluation<dim, dim> velocity(evaluator.mapping(),
                                          stokes_dofs.get_fe(),
                                          update_values | update_gradients,
                                          0);
+    FEFaceValues<dim>           face_normals(evaluator.mapping(),
+                                   stokes_dofs.get_fe(),
+                                   QGauss<dim - 1>(2),
+                                   update_normal_vectors);
     while (Utilities::MPI::max(static_cast<unsigned int>(active.size()), comm) > 0)
       {
         ++iteration;
@@ -680,7 +695,7 @@ namespace viscofilm
             if (cut_pending[i])
               {
                 if ((residual < accepted_residual[i] || residual <= tolerance) &&
-                    enters(cuts[i], stokes_dofs, stokes_solution, max_speed, velocity))
+                    enters(cuts[i], stokes_dofs, stokes_solution, max_speed, velocity, face_normals))
                   {
                     ++n_left_domain;
                     continue;
@@ -724,7 +739,7 @@ namespace viscofilm
     // VolumeFraction's inflow faces (inflow_threshold).
     inflow.assign(points.size(), numbers::invalid_boundary_id);
     for (unsigned int i = 0; i < points.size(); ++i)
-      if (cuts[i].found && enters(cuts[i], stokes_dofs, stokes_solution, max_speed, velocity))
+      if (cuts[i].found && enters(cuts[i], stokes_dofs, stokes_solution, max_speed, velocity, face_normals))
         inflow[i] = cuts[i].cell->face(cuts[i].cut_face)->boundary_id();
 
     unsigned int n_left_cell = 0;

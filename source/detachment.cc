@@ -243,7 +243,8 @@ namespace viscofilm
 
     // Where the released nodes are: their bounding box.
     std::vector<Point<dim>> released_nodes;
-    FEValues<dim>           node_values(dofs.get_fe(),
+    FEValues<dim>           node_values(volume_fraction.mapping(),
+                              dofs.get_fe(),
                               Quadrature<dim>(dofs.get_fe().get_unit_support_points()),
                               update_quadrature_points);
     std::vector<types::global_dof_index> local_dofs(node_values.n_quadrature_points);
@@ -446,7 +447,8 @@ namespace viscofilm
     if (released.size() > 0)
       {
         const QGauss<dim>   quadrature(dofs.get_fe().degree + 1);
-        FEValues<dim>       values(dofs.get_fe(),
+        FEValues<dim>       values(volume_fraction.mapping(),
+                             dofs.get_fe(),
                              quadrature,
                              update_values | update_quadrature_points |
                                update_JxW_values);

@@ -36,7 +36,7 @@ namespace viscofilm
     }
 
 
-    /// σ_xy and σ_vm at the points DataOut evaluates (2 subdivisions).
+    /// σ_xy and σ_vm at a snapshot's points.
     template <int dim>
     class LoadsPostprocessor : public DataPostprocessor<dim>
     {
@@ -45,7 +45,7 @@ namespace viscofilm
                          const StokesSolver<dim> & stokes,
                          const VolumeFraction<dim> &volume_fraction,
                          const ElasticStress<dim> & stress)
-        : points(QTrapezoid<1>(), 2)
+        : points(snapshot_points<dim>())
         , model(model)
         , stokes(stokes)
         , volume_fraction(volume_fraction)
@@ -82,7 +82,6 @@ namespace viscofilm
       }
 
     private:
-      // DataOut's points for build_patches(2), in its order.
       const QIterated<dim>    points;
       const Model &         model;
       const StokesSolver<dim> & stokes;

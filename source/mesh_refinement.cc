@@ -2,7 +2,6 @@
 #include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/fe/mapping_q1.h>
 
 #include <viscofilm/dof_cell.h>
 #include <viscofilm/input.h>
@@ -149,7 +148,7 @@ namespace viscofilm
               const QIterated<dim> grid(QTrapezoid<1>(), std::max(n, 1u));
               for (const Point<dim> &unit : grid.get_points())
                 phi.push_back(input->phi.value(
-                  StaticMappingQ1<dim>::mapping.transform_unit_to_real_cell(cell, unit)));
+                  volume_fraction.mapping().transform_unit_to_real_cell(cell, unit)));
             }
           // Each measure relative to its threshold; the largest counts:
           // > 1 refine, < 1/4 coarsen. The detached fraction φ_d by its

@@ -1,6 +1,5 @@
 #include <deal.II/base/utilities.h>
 
-#include <deal.II/fe/mapping_q1.h>
 
 #include <deal.II/numerics/vector_tools_evaluate.h>
 
@@ -131,9 +130,11 @@ namespace viscofilm
 
   template <int dim>
   Output<dim>::Output(const Parameters &                             parameters,
-                 const parallel::distributed::Triangulation<dim> &triangulation)
+                 const parallel::distributed::Triangulation<dim> &triangulation,
+                 const Mapping<dim> &                             mapping)
     : parameters(parameters)
     , triangulation(triangulation)
+    , mapping(mapping)
     , mpi_communicator(triangulation.get_communicator())
   {}
 
@@ -202,8 +203,8 @@ namespace viscofilm
     DataOut<dim> data_out;
     data_out.attach_triangulation(triangulation);
     add_fields(data_out);
-    // Subdivide each cell once per polynomial degree: the Q2 nodes are kept.
-    data_out.build_patches(2);
+    // Every cell through the problem's mapping, as the fields are computed.
+    data_out.build_patches(mapping, snapshot_subdivisions, DataOut<dim>::curved_inner_cells);
 
     // Every cell keeps its own copy of its vertices: merging them ("filter
     // duplicates") kept one cell's value of the fields that jump between
@@ -260,7 +261,7 @@ namespace viscofilm
         probe_cache.reinit(is_root ? parameters.probe_points :
                                      std::vector<Point<dim>>(),
                            triangulation,
-                           StaticMappingQ1<dim>::mapping);
+                           mapping);
         // Collective, so that no rank waits for one that threw.
         const bool all_found =
           Utilities::MPI::min(probe_cache.all_points_found() ? 1 : 0,

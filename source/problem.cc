@@ -88,7 +88,7 @@ namespace viscofilm
                  stokes,
                  volume_fraction,
                  stress)
-    , output(parameters.output, triangulation)
+    , output(parameters.output, triangulation, mapping)
     , checkpoint(parameters.checkpointing, parameters.output.directory, comm)
     // A checkpoint attaches the fields' vectors in this order.
     , fields{&stokes, &stress, &volume_fraction}

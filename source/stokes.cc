@@ -362,7 +362,7 @@ namespace viscofilm
     constraints.clear();
     constraints.reinit(locally_relevant_dofs);
     DoFTools::make_hanging_node_constraints(dofs, constraints);
-    boundary_conditions.constrain_velocity(dofs, time, constraints);
+    boundary_conditions.constrain_velocity(this->mapping(), dofs, time, constraints);
 
     // A factorisation needs a nonsingular matrix: unless a boundary fixes the
     // pressure level, pin the first pressure dof (Q1: a coarse-mesh vertex,
@@ -443,7 +443,7 @@ namespace viscofilm
       return;
     current_solution = distributed;
     const double mean_pressure =
-      VectorTools::compute_mean_value(dofs, QGauss<dim>(3), current_solution, dim);
+      VectorTools::compute_mean_value(this->mapping(), dofs, QGauss<dim>(3), current_solution, dim);
     // The dofs whose shape functions sum to 1: all of Q1's, the cell mean
     // of P1disc's (its slopes must stay).
     std::vector<std::vector<bool>> constant_modes;

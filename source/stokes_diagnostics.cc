@@ -151,7 +151,8 @@ namespace viscofilm
   StokesSolver<dim>::velocity_error_indicator() const
   {
     Vector<float> indicator(triangulation.n_active_cells());
-    KellyErrorEstimator<dim>::estimate(dofs,
+    KellyErrorEstimator<dim>::estimate(this->mapping(),
+                                     dofs,
                                      QGauss<dim - 1>(fe.degree + 1),
                                      {},
                                      current_solution,

@@ -9,6 +9,7 @@
 #include <deal.II/fe/fe_dgq.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q1.h>
 
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/la_parallel_vector.h>
@@ -106,7 +107,9 @@ namespace viscofilm
         AffineConstraints<double> &constraints = L.constraints[l];
         constraints.reinit(DoFTools::extract_locally_relevant_dofs(L.dofs[l]));
         DoFTools::make_hanging_node_constraints(L.dofs[l], constraints);
-        boundary_conditions.constrain_velocity(L.dofs[l], 0.0, constraints, true);
+        // The bilinear map of the level operators (a preconditioner's).
+        boundary_conditions.constrain_velocity(
+          StaticMappingQ1<dim>::mapping, L.dofs[l], 0.0, constraints, true);
         constraints.close();
       }
     L.operators =

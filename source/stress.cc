@@ -4,12 +4,12 @@
 
 #include <deal.II/fe/fe_dgq.h>
 #include <deal.II/fe/fe_q.h>
-#include <deal.II/fe/mapping_q1.h>
 
 #include <deal.II/matrix_free/fe_point_evaluation.h>
 
 #include <viscofilm/dof_cell.h>
 #include <viscofilm/input.h>
+#include <viscofilm/output.h>
 #include <viscofilm/stokes.h>
 #include <viscofilm/stress.h>
 #include <viscofilm/volume_fraction.h>
@@ -81,15 +81,12 @@ namespace viscofilm
         std::vector<double> phi(n, 0.0);
         if (stress.stress_depends_on_volume_fraction())
           {
-            const auto cell = inputs.template get_cell<dim>();
-            std::vector<Point<dim>> unit_points(n);
-            for (unsigned int q = 0; q < n; ++q)
-              unit_points[q] = StaticMappingQ1<dim>::mapping.transform_real_to_unit_cell(
-                cell, inputs.evaluation_points[q]);
+            AssertThrow(n == snapshot_points<dim>().size(), ExcInternalError());
             FEValues<dim> phi_values(volume_fraction.dof_handler().get_fe(),
-                                   Quadrature<dim>(unit_points),
-                                   update_values);
-            phi_values.reinit(cell_of(volume_fraction.dof_handler(), cell));
+                                     snapshot_points<dim>(),
+                                     update_values);
+            phi_values.reinit(
+              cell_of(volume_fraction.dof_handler(), inputs.template get_cell<dim>()));
             phi_values.get_function_values(volume_fraction.solution(), phi);
           }
         for (unsigned int q = 0; q < n; ++q)
@@ -113,7 +110,7 @@ namespace viscofilm
       UpdateFlags
       get_needed_update_flags() const override
       {
-        return update_values | update_quadrature_points;
+        return update_values;
       }
 
     private:

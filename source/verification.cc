@@ -84,7 +84,8 @@ namespace viscofilm
 
     const DoFHandler<dim> &dof_handler = stokes.dof_handler();
     const QGauss<dim>      quadrature(dof_handler.get_fe().degree + 2);
-    FEValues<dim>          fe_values(dof_handler.get_fe(),
+    FEValues<dim>          fe_values(stokes.mapping(),
+                          dof_handler.get_fe(),
                           quadrature,
                           update_values | update_quadrature_points |
                             update_JxW_values);
@@ -122,14 +123,16 @@ namespace viscofilm
     /// ‖u_h − (f + offset)‖_L2 over all components of a field.
     template <int dim>
     double
-    field_l2_error(const DoFHandler<dim> &                dof_handler,
+    field_l2_error(const Mapping<dim> &                   mapping,
+                   const DoFHandler<dim> &                dof_handler,
                    const TrilinosWrappers::MPI::Vector &solution,
                    const Function<dim> &                exact,
                    const std::vector<double> &          offset)
     {
       const unsigned int n = offset.size();
       const QGauss<dim>    quadrature(dof_handler.get_fe().degree + 2);
-      FEValues<dim>        fe_values(dof_handler.get_fe(),
+      FEValues<dim>        fe_values(mapping,
+                            dof_handler.get_fe(),
                             quadrature,
                             update_values | update_quadrature_points |
                               update_JxW_values);
@@ -161,7 +164,8 @@ namespace viscofilm
     const ExpressionAt<dim> exact = exact_stress->at(time);
     const DoFHandler<dim> &dof_handler = stress.dof_handler();
     const QGauss<dim>      quadrature(dof_handler.get_fe().degree + 2);
-    FEValues<dim>          fe_values(dof_handler.get_fe(),
+    FEValues<dim>          fe_values(stress.mapping(),
+                          dof_handler.get_fe(),
                           quadrature,
                           update_values | update_quadrature_points | update_JxW_values);
     FEValues<dim> phi_values(volume_fraction.dof_handler().get_fe(), quadrature, update_values);
@@ -197,7 +201,8 @@ namespace viscofilm
   Verification<dim>::volume_fraction_l2_error(const VolumeFraction<dim> &volume_fraction,
                                          const double          time) const
   {
-    return field_l2_error(volume_fraction.dof_handler(),
+    return field_l2_error(volume_fraction.mapping(),
+                          volume_fraction.dof_handler(),
                           volume_fraction.solution(),
                           exact_volume_fraction->at(time),
                           {0.0});

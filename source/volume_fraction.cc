@@ -152,13 +152,12 @@ namespace viscofilm
     boundary_conditions.constrain_periodic(dofs, constraints);
     if (stokes != nullptr)
       {
-        // Inflow where the mean u·n is below round-off relative to the
-        // velocity scale: a wall with u = 0 up to round-off is none.
-        const double tolerance = inflow_threshold * stokes->max_velocity();
+        const double          max_speed = stokes->max_velocity();
         const QGauss<dim - 1> face_quadrature(3);
-        FEFaceValues<dim>     stokes_face(stokes->dof_handler().get_fe(),
+        FEFaceValues<dim>     stokes_face(this->mapping(),
+                                      stokes->dof_handler().get_fe(),
                                     face_quadrature,
-                                    update_values | update_normal_vectors);
+                                    update_values | update_normal_vectors | update_JxW_values);
         const FEValuesExtractors::Vector     velocities(0);
         std::vector<Tensor<1, dim>>            velocity(face_quadrature.size());
         std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face());
@@ -173,11 +172,7 @@ namespace viscofilm
                   stokes_face.reinit(cell_of(stokes->dof_handler(), cell), f);
                   stokes_face[velocities].get_function_values(stokes->solution(),
                                                               velocity);
-                  double flux = 0;
-                  for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                    flux += velocity[q] * stokes_face.normal_vector(q) *
-                            face_quadrature.weight(q);
-                  if (flux >= -tolerance)
+                  if (!flow_enters(mean_normal_velocity(stokes_face, velocity), max_speed))
                     continue;
                   const double value = inflow_value(cell->face(f)->boundary_id());
                   cell->face(f)->get_dof_indices(face_dofs);
@@ -353,12 +348,14 @@ namespace viscofilm
     system_rhs    = 0;
 
     const QGauss<dim> quadrature(fe.degree + 1);
-    FEValues<dim>     fe_values(fe,
+    FEValues<dim>     fe_values(this->mapping(),
+                          fe,
                           quadrature,
                           update_values | update_gradients | update_JxW_values);
     std::unique_ptr<FEValues<dim>> stokes_values;
     if (stokes != nullptr)
-      stokes_values = std::make_unique<FEValues<dim>>(stokes->dof_handler().get_fe(),
+      stokes_values = std::make_unique<FEValues<dim>>(this->mapping(),
+                                                      stokes->dof_handler().get_fe(),
                                                     quadrature,
                                                     update_values);
     const FEValuesExtractors::Vector velocities(0);
@@ -538,7 +535,8 @@ namespace viscofilm
     // nearly an M-matrix (exactly on squares and cubes with constant κ).
     const FE_Q_iso_Q1<dim> sub_cells(2);
     const QIterated<dim>   quadrature(QGauss<1>(2), 2);
-    FEValues<dim>          values(sub_cells,
+    FEValues<dim>          values(this->mapping(),
+                         sub_cells,
                        quadrature,
                        update_values | update_gradients | update_JxW_values);
     const unsigned int   n_dofs = fe.n_dofs_per_cell();
@@ -669,7 +667,7 @@ namespace viscofilm
     const IndexSet &              owned = dofs.locally_owned_dofs();
     TrilinosWrappers::MPI::Vector w(owned, mpi_communicator), weights(w);
     const QGauss<dim>               quadrature(fe.degree + 1);
-    FEValues<dim>    fe_values(fe, quadrature, update_values | update_JxW_values);
+    FEValues<dim>    fe_values(this->mapping(), fe, quadrature, update_values | update_JxW_values);
     Vector<double> cell_w(fe.n_dofs_per_cell());
     std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dofs.active_cell_iterators())
@@ -745,8 +743,9 @@ namespace viscofilm
                                 const TrilinosWrappers::MPI::BlockVector &velocity_field) const
   {
     const QGauss<dim - 1> quadrature(fe.degree + 1);
-    FEFaceValues<dim>                  phi_face(fe, quadrature, update_values | update_JxW_values);
-    FEFaceValues<dim>                  stokes_face(stokes_dofs.get_fe(),
+    FEFaceValues<dim> phi_face(this->mapping(), fe, quadrature, update_values | update_JxW_values);
+    FEFaceValues<dim> stokes_face(this->mapping(),
+                                  stokes_dofs.get_fe(),
                                 quadrature,
                                 update_values | update_normal_vectors);
     const FEValuesExtractors::Vector velocities(0);
@@ -805,7 +804,7 @@ namespace viscofilm
   {
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
                                               mpi_communicator);
-    VectorTools::interpolate(dofs, initial, distributed);
+    VectorTools::interpolate(this->mapping(), dofs, initial, distributed);
     set(distributed);
   }
 
@@ -864,7 +863,7 @@ namespace viscofilm
   VolumeFraction<dim>::integral() const
   {
     const QGauss<dim>     quadrature(fe.degree + 1);
-    FEValues<dim>         fe_values(fe, quadrature, update_values | update_JxW_values);
+    FEValues<dim> fe_values(this->mapping(), fe, quadrature, update_values | update_JxW_values);
     std::vector<double> values(quadrature.size());
     double              sum = 0;
     for (const auto &cell : dofs.active_cell_iterators())

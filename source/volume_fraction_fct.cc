@@ -76,7 +76,7 @@ namespace viscofilm
     // the boundary term, so that the mass balance is the boundary's flux.
     make_constraints(nullptr);
     const IndexSet &owned = dofs.locally_owned_dofs();
-    const double    tolerance = inflow_threshold * stokes.max_velocity();
+    const double    max_speed = stokes.max_velocity();
 
     TransportOperator op;
     std::array<TrilinosWrappers::MPI::Vector, 2> inflow, inflow_phi, out_w, in_w;
@@ -93,7 +93,7 @@ namespace viscofilm
     FEFaceValues<dim> stokes_face(this->mapping(),
                                   stokes.dof_handler().get_fe(),
                                   face_quadrature,
-                                  update_values | update_normal_vectors);
+                                  update_values | update_normal_vectors | update_JxW_values);
     const FEValuesExtractors::Vector     velocities(0);
     const unsigned int                   n_dofs = fe.n_dofs_per_cell();
     std::vector<Tensor<1, dim>>          velocity(quadrature.size());
@@ -150,15 +150,9 @@ namespace viscofilm
                     phi_face.reinit(cell, f);
                     stokes_face.reinit(cell_of(stokes.dof_handler(), cell), f);
                     stokes_face[velocities].get_function_values(u, face_velocity);
-                    double flux = 0, area = 0;
-                    for (const unsigned int q : phi_face.quadrature_point_indices())
-                      {
-                        flux += face_velocity[q] * stokes_face.normal_vector(q) * phi_face.JxW(q);
-                        area += phi_face.JxW(q);
-                      }
-                    // Inflow as make_constraints() finds it: the face's mean u·n.
-                    const bool entering = flux < -tolerance * area;
-                    const double value = inflow_value(cell->face(f)->boundary_id());
+                    const double mean_un  = mean_normal_velocity(stokes_face, face_velocity);
+                    const bool   entering = flow_enters(mean_un, max_speed);
+                    const double value    = inflow_value(cell->face(f)->boundary_id());
                     for (const unsigned int q : phi_face.quadrature_point_indices())
                       for (unsigned int i = 0; i < n_dofs; ++i)
                         {
@@ -167,8 +161,8 @@ namespace viscofilm
                           (entering ? cell_in : cell_out)(i) += psi_i * un;
                           if (entering)
                             {
-                              cell_inflow(i) += psi_i * flux / area;
-                              cell_inflow_phi(i) += psi_i * flux / area * value;
+                              cell_inflow(i) += psi_i * mean_un;
+                              cell_inflow_phi(i) += psi_i * mean_un * value;
                             }
                         }
                     any_inflow = any_inflow || entering;

@@ -9,6 +9,9 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping.h>
+
 #include <deal.II/lac/affine_constraints.h>
 
 #include <viscofilm/dimension.h>
@@ -26,6 +29,28 @@ namespace viscofilm
   /// Flow enters where u·n < −inflow_threshold · max|u|: a wall whose u·n is
   /// round-off is no inflow boundary.
   constexpr double inflow_threshold = 1e-8;
+
+  /// The mean of u·n over the boundary face on which @p stokes_face was
+  /// last reinitialised (with normals and JxW), @p velocity the velocity at
+  /// its quadrature points.
+  template <int dim>
+  double
+  mean_normal_velocity(const FEFaceValuesBase<dim> &      stokes_face,
+                       const std::vector<Tensor<1, dim>> &velocity);
+
+  /// Whether the flow enters through a boundary face whose mean u·n is
+  /// @p mean_normal_velocity, @p max_speed being the velocity scale: the
+  /// transport schemes' inflow faces. A face's mean, not a point's u·n:
+  /// along a curved wall that the flow follows, the discrete u·n changes
+  /// sign from point to point by the wall's approximation error, whereas
+  /// the face's flux is the stream function's difference between its ends.
+  /// (The departure feet test the point where they leave:
+  /// DepartureFeet::enters().)
+  inline bool
+  flow_enters(const double mean_normal_velocity, const double max_speed)
+  {
+    return mean_normal_velocity < -inflow_threshold * max_speed;
+  }
 
   template <int dim>
   class BoundaryConditions
@@ -70,10 +95,12 @@ namespace viscofilm
 
     /// Add the velocity constraints at time @p time to @p constraints for an
     /// element whose first dim components are the velocity (the Stokes
-    /// element, or the velocity alone); @p homogeneous: with zero values
-    /// (a multigrid level's).
+    /// element, or the velocity alone); @p mapping places the boundary nodes
+    /// and gives the normals; @p homogeneous: with zero values (a multigrid
+    /// level's).
     void
-    constrain_velocity(const DoFHandler<dim> &    dof_handler,
+    constrain_velocity(const Mapping<dim> &       mapping,
+                       const DoFHandler<dim> &    dof_handler,
                        const double               time,
                        AffineConstraints<double> &constraints,
                        const bool                 homogeneous = false) const;

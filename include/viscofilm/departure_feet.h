@@ -13,6 +13,8 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
+#include <deal.II/fe/fe_values.h>
+
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 
 #include <deal.II/matrix_free/fe_point_evaluation.h>
@@ -236,14 +238,17 @@ namespace viscofilm
                     typename PointEvaluator<dim>::Trace &                    cut) const;
 
     /// Does the flow enter the domain at @p cut (u·n < −inflow_threshold
-    /// @p max_speed)? @p velocity: the caller's evaluator of u on
-    /// @p stokes_dofs, built once per compute().
+    /// @p max_speed, and on a curved face at an angle larger than the
+    /// face's turning squared)? @p velocity and @p face_normals: the
+    /// caller's evaluator of u on @p stokes_dofs and face values with
+    /// normals, built once per compute().
     bool
     enters(const typename PointEvaluator<dim>::Trace &cut,
            const DoFHandler<dim> &                    stokes_dofs,
            const TrilinosWrappers::MPI::BlockVector & stokes_solution,
            double                                     max_speed,
-           FEPointEvaluation<dim, dim> &              velocity) const;
+           FEPointEvaluation<dim, dim> &              velocity,
+           FEFaceValues<dim> &                        face_normals) const;
 
     /// The feet of the points @p unsolved (indices into @p points) by
     /// explicit midpoint (RK2) sub-steps along the characteristic, as many

@@ -7,8 +7,11 @@
 #include <deal.II/base/mpi_remote_point_evaluation.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
+#include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/distributed/tria.h>
+
+#include <deal.II/fe/mapping.h>
 
 #include <deal.II/numerics/data_out.h>
 
@@ -30,6 +33,20 @@ namespace viscofilm
   class ElasticStress;
   template <int dim>
   class VolumeFraction;
+
+  /// A snapshot's subdivisions of each cell, one per polynomial degree: the
+  /// Q2 nodes are among its points.
+  constexpr unsigned int snapshot_subdivisions = 2;
+
+  /// The unit points at which a snapshot evaluates the fields of each cell,
+  /// in DataOut's order: a postprocessor that needs other fields than its
+  /// own evaluates them there.
+  template <int dim>
+  QIterated<dim>
+  snapshot_points()
+  {
+    return QIterated<dim>(QTrapezoid<1>(), snapshot_subdivisions);
+  }
 
   /**
    * A CSV file written by rank 0, one row at a time with named columns in a
@@ -77,8 +94,11 @@ namespace viscofilm
       std::vector<Point<dim>> probe_points;
     };
 
+    /// @p mapping: the problem's, which places the snapshots' points and
+    /// the probes.
     Output(const Parameters &                             parameters,
-           const parallel::distributed::Triangulation<dim> &triangulation);
+           const parallel::distributed::Triangulation<dim> &triangulation,
+           const Mapping<dim> &                             mapping);
 
     /// Create the output directory and write the parameters used into it;
     /// when resuming after @p resume_after_step, continue the run's files
@@ -123,6 +143,7 @@ namespace viscofilm
   private:
     const Parameters &                             parameters;
     const parallel::distributed::Triangulation<dim> &triangulation;
+    const Mapping<dim> &                             mapping;
     const MPI_Comm                                 mpi_communicator;
 
     std::vector<XDMFEntry>                  xdmf_entries;
