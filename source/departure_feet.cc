@@ -502,9 +502,11 @@ namespace viscofilm
       normal[e] = velocity.inverse_jacobian(0)[f / 2][e];
     normal *= (f % 2 == 0 ? -1. : 1.) / normal.norm();
     // A flow that follows a curved wall crosses the wall's quadratic image
-    // at an angle of the order of the face's turning squared (an arc of
-    // angle θ is approximated to O(θ²) in slope): a cut at a smaller angle
-    // is no inflow. On a plane face the turning is zero.
+    // at small angles of either sign (the image's slope is off by θ³/32 on
+    // a circle's arc of angle θ): a cut at an angle below the face's
+    // turning squared (at least θ²/12) is no inflow. Zero on a plane face;
+    // on a coarse curved face it also ignores a shallow real inflow, which
+    // then keeps the interior value at the cut.
     face_normals.reinit(cut.cell, f);
     double turning = 0;
     for (const unsigned int q : face_normals.quadrature_point_indices())

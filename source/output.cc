@@ -1,5 +1,6 @@
 #include <deal.II/base/utilities.h>
 
+#include <deal.II/fe/mapping_q.h>
 
 #include <deal.II/numerics/vector_tools_evaluate.h>
 
@@ -203,8 +204,14 @@ namespace viscofilm
     DataOut<dim> data_out;
     data_out.attach_triangulation(triangulation);
     add_fields(data_out);
-    // Every cell through the problem's mapping, as the fields are computed.
-    data_out.build_patches(mapping, snapshot_subdivisions, DataOut<dim>::curved_inner_cells);
+    // On a curved mesh every cell through the problem's mapping, as the
+    // fields are computed (the patch points are the cells' own).
+    const auto *mapping_q = dynamic_cast<const MappingQ<dim> *>(&mapping);
+    data_out.build_patches(mapping,
+                           snapshot_subdivisions,
+                           mapping_q != nullptr && mapping_q->get_degree() > 1 ?
+                             DataOut<dim>::curved_inner_cells :
+                             DataOut<dim>::no_curved_cells);
 
     // Every cell keeps its own copy of its vertices: merging them ("filter
     // duplicates") kept one cell's value of the fields that jump between

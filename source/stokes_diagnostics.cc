@@ -137,10 +137,13 @@ namespace viscofilm
         {
           fe_values.reinit(cell);
           fe_values[velocities].get_function_divergences(current_solution, divergence);
-          double integral = 0;
+          double integral = 0, measure = 0;
           for (unsigned int q = 0; q < quadrature.size(); ++q)
-            integral += divergence[q] * fe_values.JxW(q);
-          max_divergence = std::max(max_divergence, std::abs(integral) / cell->measure());
+            {
+              integral += divergence[q] * fe_values.JxW(q);
+              measure += fe_values.JxW(q);
+            }
+          max_divergence = std::max(max_divergence, std::abs(integral) / measure);
         }
     return Utilities::MPI::max(max_divergence, mpi_communicator);
   }

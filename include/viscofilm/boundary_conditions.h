@@ -43,7 +43,8 @@ namespace viscofilm
   /// transport schemes' inflow faces. A face's mean, not a point's u·n:
   /// along a curved wall that the flow follows, the discrete u·n changes
   /// sign from point to point by the wall's approximation error, whereas
-  /// the face's flux is the stream function's difference between its ends.
+  /// the face's flux nearly vanishes (in 2D it is the difference of the
+  /// stream function, constant along the wall, between the face's ends).
   /// (The departure feet test the point where they leave:
   /// DepartureFeet::enters().)
   inline bool

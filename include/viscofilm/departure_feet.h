@@ -212,10 +212,10 @@ namespace viscofilm
     at_feet() const;
 
     /// Per point of the last compute(): the boundary id where its
-    /// characteristic enters the domain (cut on a boundary face with
-    /// u·n < −1e-8 max|u|, max over the points traced), or
-    /// numbers::invalid_boundary_id. A foot cut on a wall by round-off is
-    /// no inflow: it keeps the interior value at the cut.
+    /// characteristic enters the domain (cut on a boundary face where
+    /// enters() holds), or numbers::invalid_boundary_id. A foot cut on a
+    /// wall that the flow follows is no inflow: it keeps the interior value
+    /// at the cut.
     const std::vector<types::boundary_id> &
     inflow_boundaries() const;
 
