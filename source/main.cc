@@ -200,23 +200,60 @@ namespace
   }
 
 
-  /// A run that stopped (Problem and its files closed): with one rank, the
-  /// exit code 1. With more, the failure may be this rank's alone while the
-  /// others wait for it in a collective call, so it stops them all
-  /// (MPI_Abort, exit code 1). When every rank failed alike (a solver, a
-  /// NaN), rank 0 prints and aborts at once; the others wait a moment first,
-  /// so that the message appears once.
+  /// A communicator of its own for stop_run(), so that its barrier cannot
+  /// match a collective call of the run.
+  struct StopCommunicator
+  {
+    StopCommunicator()
+      : comm(dealii::Utilities::MPI::duplicate_communicator(MPI_COMM_WORLD))
+    {}
+    StopCommunicator(const StopCommunicator &) = delete;
+    StopCommunicator &
+    operator=(const StopCommunicator &) = delete;
+    ~StopCommunicator()
+    {
+      dealii::Utilities::MPI::free_communicator(comm);
+    }
+    MPI_Comm comm;
+  };
+
+
+  /// Whether every rank of @p stop_comm (a communicator used for nothing
+  /// else) reaches this call within @p patience: a non-blocking barrier,
+  /// so that ranks still waiting in a collective call of the run do not
+  /// hang it.
+  bool
+  all_ranks_stopped(const MPI_Comm stop_comm, const std::chrono::seconds patience)
+  {
+    MPI_Request request;
+    MPI_Ibarrier(stop_comm, &request);
+    const auto deadline = std::chrono::steady_clock::now() + patience;
+    int        done     = 0;
+    while (MPI_Test(&request, &done, MPI_STATUS_IGNORE) == MPI_SUCCESS && done == 0 &&
+           std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    return done != 0;
+  }
+
+
+  /// A run that stopped (Problem and its files closed): exit code 1. When
+  /// every rank failed alike (a solver, a NaN, a time step), rank 0 prints
+  /// and all return normally. When the failure is this rank's alone, the
+  /// others wait for it in a collective call: it prints with its rank and
+  /// stops them all (MPI_Abort). Aborting only then keeps Open MPI's
+  /// abort report, whose messages race with the job's end, out of
+  /// ordinary failures.
   int
-  stop_run(const std::string &message)
+  stop_run(const std::string &message, const MPI_Comm stop_comm)
   {
     const unsigned int rank    = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
     const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
-    if (rank > 0)
-      std::this_thread::sleep_for(std::chrono::seconds(2));
-    std::cerr << "viscofilm: run stopped"
-              << (rank > 0 ? " (on MPI rank " + std::to_string(rank) + ")" : std::string())
-              << ": " << message << std::endl;
-    if (n_ranks > 1)
+    const bool alike = n_ranks == 1 || all_ranks_stopped(stop_comm, std::chrono::seconds(10));
+    if (rank == 0 || !alike)
+      std::cerr << "viscofilm: run stopped"
+                << (alike ? std::string() : " (on MPI rank " + std::to_string(rank) + ")")
+                << ": " << message << std::endl;
+    if (!alike)
       MPI_Abort(MPI_COMM_WORLD, 1);
     return 1;
   }
@@ -254,6 +291,7 @@ namespace
         return 0;
       }
 
+    const StopCommunicator stop;
     try
       {
         Problem<dim> problem(parameters, prm, MPI_COMM_WORLD);
@@ -265,7 +303,7 @@ namespace
       }
     catch (const std::exception &e)
       {
-        return stop_run(error_message(e));
+        return stop_run(error_message(e), stop.comm);
       }
     return 0;
   }
