@@ -1,5 +1,5 @@
 // Stokes solver/Method = direct and thesis: the whole saddle-point system as
-// one matrix, factorised (Amesos KLU) or solved by the thesis' GMRES with
+// one matrix, factorised (Amesos MUMPS or KLU) or solved by the thesis' GMRES with
 // ILU(0), a baseline for benchmarks.
 #include <deal.II/dofs/dof_tools.h>
 
@@ -113,12 +113,21 @@ namespace viscofilm
     };
 
 
-    /// Sparse LU (Amesos KLU): tiny meshes and debugging.
+    /// Sparse LU (Amesos: MUMPS or KLU) of the whole system, factorised
+    /// once per assembled matrix: the Picard iterations of a step, which change only
+    /// the right-hand side, reuse it.
     template <int dim>
     class Direct : public Monolithic<dim>
     {
     public:
       using Monolithic<dim>::Monolithic;
+
+      void
+      finish_matrix() override
+      {
+        Monolithic<dim>::finish_matrix();
+        factorization.reset();
+      }
 
     protected:
       unsigned int
@@ -126,11 +135,21 @@ namespace viscofilm
                    const TrilinosWrappers::MPI::Vector &b,
                    double) override
       {
-        SolverControl                  control(1, 0);
-        TrilinosWrappers::SolverDirect solver(control);
-        solver.solve(this->matrix, x, b);
+        if (!factorization)
+          {
+            factorization = std::make_unique<TrilinosWrappers::SolverDirect>(
+              control,
+              TrilinosWrappers::SolverDirect::AdditionalData(false,
+                                                             this->parameters.direct_solver));
+            factorization->initialize(this->matrix);
+          }
+        factorization->solve(x, b);
         return 0;
       }
+
+    private:
+      SolverControl                                   control{1, 0};
+      std::unique_ptr<TrilinosWrappers::SolverDirect> factorization;
     };
 
 

@@ -48,7 +48,7 @@ namespace viscofilm
     enum class Method
     {
       block_preconditioned, // FGMRES + block triangular preconditioner
-      direct,               // Amesos KLU on the whole system (small meshes)
+      direct,               // a sparse LU of the whole system (Direct solver)
       thesis                // the thesis' way: GMRES + ILU on the whole system
     };
 
@@ -95,6 +95,8 @@ namespace viscofilm
       parse_parameters(ParameterHandler &prm);
 
       Method          method         = Method::block_preconditioned;
+      /// The Amesos package of Method = direct.
+      std::string     direct_solver  = "Amesos_Mumps";
       double          tolerance      = 1e-8;
       double          predictor_tolerance = 0; // 0: tolerance
       unsigned int    max_iterations = 1000;
