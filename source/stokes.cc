@@ -57,6 +57,22 @@ namespace viscofilm
                       "about 1e5-1e6 unknowns. thesis: the thesis' solver, GMRES "
                       "(AztecOO) with an incomplete LU factorisation of the "
                       "whole system, as a baseline for benchmarks.");
+    prm.declare_entry("Momentum convection",
+                      "semi-Lagrangian",
+                      Patterns::Selection("semi-Lagrangian|Eulerian"),
+                      "The inertia ρ Du/Dt (Model/Density or Reynolds number "
+                      "> 0). semi-Lagrangian: differences of u along the "
+                      "departure feet (implicit Euler, or BDF2 at Order 2), "
+                      "symmetric matrix; a steady state depends on k (DFG "
+                      "2D-1's drag is 6.6 % high at Ū k = D/5). "
+                      "Eulerian: ρ(∂u/∂t + (u*·∇)u) with the same differences "
+                      "in time at the point and the convection implicit in u, "
+                      "linearised about u* = u^n (Order 1) or its extrapolation "
+                      "2u^n − u^{n-1} (Order 2): a steady state independent of "
+                      "k, for steady flows at Re > 1. Its matrix is not "
+                      "symmetric; the block preconditioner approximates its "
+                      "symmetric part, so at cell Reynolds numbers ρ|u|Δx/η "
+                      "above about 10 use Method = direct.");
     prm.declare_entry("Direct solver",
                       "MUMPS",
                       Patterns::Selection("MUMPS|KLU"),
@@ -261,6 +277,8 @@ namespace viscofilm
     method = (name == "direct" ? Method::direct :
               name == "thesis" ? Method::thesis :
                                  Method::block_preconditioned);
+    convection = (prm.get("Momentum convection") == "Eulerian" ? Convection::eulerian :
+                                                                  Convection::semi_lagrangian);
     direct_solver = "Amesos_" + std::string(prm.get("Direct solver") == "KLU" ? "Klu" : "Mumps");
     check_input(method != Method::direct || Amesos().Query(direct_solver),
                 "Stokes solver/Direct solver = " + prm.get("Direct solver") +

@@ -1,7 +1,8 @@
 // The Stokes system's assembly (MODEL.md §3 step 2a): the momentum equation
-// with the elastic stress, the velocity at the departure feet and the
-// boundary tractions on the right; each cell's matrix goes to the linear-
-// solver strategy (stokes_linear_solver.h).
+// with the elastic stress, the velocity at the departure feet (or Eulerian
+// convection) and the boundary tractions on the right; each cell's matrix
+// goes to the linear-solver strategy (stokes_linear_solver.h). And the
+// step's inertia for the consistent forces (inertia()).
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/work_stream.h>
 
@@ -87,6 +88,7 @@ namespace viscofilm
         , tau(quadrature.size())
         , iterate_strain_rate(quadrature.size())
         , phi_u(stokes_fe.n_dofs_per_cell())
+        , grad_phi_u(stokes_fe.n_dofs_per_cell())
         , symgrad_phi_u(stokes_fe.n_dofs_per_cell())
         , div_phi_u(stokes_fe.n_dofs_per_cell())
         , phi_p(stokes_fe.n_dofs_per_cell())
@@ -113,6 +115,7 @@ namespace viscofilm
       std::vector<SymmetricTensor<2, dim>> tau;
       std::vector<SymmetricTensor<2, dim>> iterate_strain_rate;
       std::vector<Tensor<1, dim>>          phi_u;
+      std::vector<Tensor<2, dim>>          grad_phi_u;
       std::vector<SymmetricTensor<2, dim>> symgrad_phi_u;
       std::vector<double>                  div_phi_u;
       std::vector<double>                  phi_p;
@@ -168,18 +171,18 @@ namespace viscofilm
       elastic_viscosity_cache.resize(triangulation.n_locally_owned_active_cells() *
                                      n_q_points);
     const bool use_feet = !old_velocity_at_feet.empty();
+    const bool eulerian =
+      parameters.convection == Convection::eulerian && model.density > 0;
 
-    // Res ∂u/∂t (ρ ∂u/∂t in SI) by implicit Euler, (Res/k)(u − u^n, v), or
-    // with u^{n-1} by BDF2 with variable steps, ω = k_n/k_{n-1}:
-    // (Res/k)((1+2ω)/(1+ω) u − (1+ω) u^n + ω²/(1+ω) u^{n-1}, v).
-    const bool   bdf2  = !previous_velocity_at_feet.empty();
-    const double omega = bdf2 ? coefficients.time_step / previous_step : 0;
-    const double mass_coefficient =
-      model.density / coefficients.time_step * (bdf2 ? (1 + 2 * omega) / (1 + omega) : 1);
-    const double old_coefficient =
-      model.density / coefficients.time_step * (bdf2 ? 1 + omega : 1);
-    const double older_coefficient =
-      model.density / coefficients.time_step * omega * omega / (1 + omega);
+    // Res Du/Dt (ρ Du/Dt in SI) by implicit Euler, (Res/k)(u − u^n, v), or
+    // with u^{n-1} by BDF2 (inertia_weights()); u^n and u^{n-1} at the
+    // departure feet (semi-Lagrangian) or at the point, with Res ((u*·∇)u, v)
+    // added (Eulerian, u* = u^n or its extrapolation to t_{n+1}, so that the
+    // step stays second order at Order 2).
+    const bool bdf2 = inertia_bdf2();
+    const auto [mass_coefficient, old_coefficient, older_coefficient] =
+      inertia_weights(coefficients.time_step);
+    const double theta = convection_extrapolation();
     const ExpressionAt<dim> body_force_now = coefficients.body_force->at(coefficients.time);
     const ElasticStress<dim> &elastic_stress = *coefficients.elastic_stress;
 
@@ -246,7 +249,11 @@ namespace viscofilm
               scratch.older_velocity[q] = previous_velocity_at_feet[first + q];
           }
       else
-        fe_values[velocities].get_function_values(old_solution, scratch.old_velocity);
+        {
+          fe_values[velocities].get_function_values(old_solution, scratch.old_velocity);
+          if (bdf2)
+            fe_values[velocities].get_function_values(older_solution, scratch.older_velocity);
+        }
       body_force_now.vector_value_list(fe_values.get_quadrature_points(),
                                        scratch.body_force);
 
@@ -323,6 +330,24 @@ namespace viscofilm
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
           for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
             cell_matrix(i, j) = cell_matrix(j, i);
+      // Eulerian: the unsymmetric Res ((u*·∇)u, v), after the mirroring.
+      if (eulerian && need_matrix)
+        for (unsigned int q = 0; q < n_q_points; ++q)
+          {
+            for (unsigned int k = 0; k < dofs_per_cell; ++k)
+              {
+                scratch.phi_u[k]      = fe_values[velocities].value(k, q);
+                scratch.grad_phi_u[k] = fe_values[velocities].gradient(k, q);
+              }
+            const Tensor<1, dim> w =
+              model.density * fe_values.JxW(q) *
+              ((1 + theta) * scratch.old_velocity[q] - theta * scratch.older_velocity[q]);
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              if (component[i] < dim)
+                for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                  if (component[j] == component[i])
+                    cell_matrix(i, j) += scratch.phi_u[i] * (scratch.grad_phi_u[j] * w);
+          }
 
       // −∫ P n·v ds (Type = pressure; outflow has P = 0).
       FEFaceValues<dim> &fe_face_values = scratch.fe_face_values;
@@ -392,6 +417,81 @@ namespace viscofilm
 
 
   template <int dim>
+  bool
+  StokesSolver<dim>::inertia_bdf2() const
+  {
+    return parameters.convection == Convection::eulerian ?
+             model.density > 0 && order == 2 && previous_step > 0 :
+             !previous_velocity_at_feet.empty();
+  }
+
+
+  template <int dim>
+  std::array<double, 3>
+  StokesSolver<dim>::inertia_weights(const double k) const
+  {
+    // BDF2 with variable steps, ω = k_n/k_{n-1}:
+    // (Res/k)((1+2ω)/(1+ω) u − (1+ω) u^n + ω²/(1+ω) u^{n-1}).
+    const double omega = inertia_bdf2() ? k / previous_step : 0;
+    const double scale = model.density / k;
+    return {{scale * (1 + 2 * omega) / (1 + omega),
+             scale * (1 + omega),
+             scale * omega * omega / (1 + omega)}};
+  }
+
+
+  template <int dim>
+  double
+  StokesSolver<dim>::convection_extrapolation() const
+  {
+    return parameters.convection == Convection::eulerian && inertia_bdf2() ?
+             step_length / previous_step :
+             0.0;
+  }
+
+
+  template <int dim>
+  void
+  StokesSolver<dim>::inertia(const FEValues<dim> &         fe_values,
+                             const std::size_t             owned_index,
+                             std::vector<Tensor<1, dim>> &result) const
+  {
+    const unsigned int n_q_points = fe_values.n_quadrature_points;
+    result.assign(n_q_points, Tensor<1, dim>());
+    if (model.density == 0 || step_length == 0)
+      return;
+    const FEValuesExtractors::Vector velocities(0);
+    const bool                       bdf2 = inertia_bdf2();
+    const auto [a, b, c]                  = inertia_weights(step_length);
+    std::vector<Tensor<1, dim>> u(n_q_points), old(n_q_points), older(n_q_points);
+    fe_values[velocities].get_function_values(current_solution, u);
+    if (!old_velocity_at_feet.empty())
+      for (unsigned int q = 0; q < n_q_points; ++q)
+        {
+          old[q] = old_velocity_at_feet[owned_index * n_q_points + q];
+          if (bdf2)
+            older[q] = previous_velocity_at_feet[owned_index * n_q_points + q];
+        }
+    else
+      {
+        fe_values[velocities].get_function_values(old_solution, old);
+        if (bdf2)
+          fe_values[velocities].get_function_values(older_solution, older);
+      }
+    for (unsigned int q = 0; q < n_q_points; ++q)
+      result[q] = a * u[q] - b * old[q] + c * older[q];
+    if (parameters.convection == Convection::eulerian)
+      {
+        const double                theta = convection_extrapolation();
+        std::vector<Tensor<2, dim>> grad_u(n_q_points);
+        fe_values[velocities].get_function_gradients(current_solution, grad_u);
+        for (unsigned int q = 0; q < n_q_points; ++q)
+          result[q] += model.density * (grad_u[q] * ((1 + theta) * old[q] - theta * older[q]));
+      }
+  }
+
+
+  template <int dim>
   Quadrature<dim>
   StokesSolver<dim>::quadrature() const
   {
@@ -406,7 +506,7 @@ namespace viscofilm
     step_length = time_step;
     old_velocity_at_feet.clear();
     previous_velocity_at_feet.clear();
-    if (model.density == 0)
+    if (model.density == 0 || parameters.convection == Convection::eulerian)
       return;
     FEValues<dim> fe_values(this->mapping(), fe, quadrature(), update_quadrature_points);
     std::vector<Point<dim>>                               points;

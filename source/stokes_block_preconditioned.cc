@@ -144,13 +144,19 @@ namespace viscofilm
               SolverControl control(parameters.velocity_inner_iterations,
                                     parameters.velocity_inner_tolerance *
                                       velocity_rhs.l2_norm());
-              SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
               dst.block(0) = 0;
+              // Eulerian convection makes the block unsymmetric: GMRES.
+              const bool symmetric = parameters.convection != StokesSolver<dim>::Convection::eulerian;
               inner_solve(
                 [&] {
-                  cg.solve(system_matrix.block(0, 0), dst.block(0), velocity_rhs, velocity_amg);
+                  if (symmetric)
+                    SolverCG<TrilinosWrappers::MPI::Vector>(control).solve(
+                      system_matrix.block(0, 0), dst.block(0), velocity_rhs, velocity_amg);
+                  else
+                    SolverGMRES<TrilinosWrappers::MPI::Vector>(control).solve(
+                      system_matrix.block(0, 0), dst.block(0), velocity_rhs, velocity_amg);
                 },
-                "velocity block CG",
+                symmetric ? "velocity block CG" : "velocity block GMRES",
                 "Velocity inner iterations = " +
                   std::to_string(parameters.velocity_inner_iterations));
             }

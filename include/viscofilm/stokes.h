@@ -24,6 +24,7 @@
 #include <viscofilm/field.h>
 #include <viscofilm/model.h>
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -87,6 +88,13 @@ namespace viscofilm
       discontinuous // Q2 × P1disc: each cell conserves mass
     };
 
+    /// The discretisation of ρ Du/Dt (Momentum convection).
+    enum class Convection
+    {
+      semi_lagrangian, // differences along the departure feet
+      eulerian         // ∂u/∂t by differences at the point, (u*·∇)u implicit
+    };
+
     struct Parameters
     {
       static void
@@ -95,6 +103,7 @@ namespace viscofilm
       parse_parameters(ParameterHandler &prm);
 
       Method          method         = Method::block_preconditioned;
+      Convection      convection     = Convection::semi_lagrangian;
       /// The Amesos package of Method = direct.
       std::string     direct_solver  = "Amesos_Mumps";
       double          tolerance      = 1e-8;
@@ -177,6 +186,16 @@ namespace viscofilm
     /// @p time_step as the length k_n of the step.
     void
     trace_back(DepartureFeet<dim> &feet, const double time_step);
+
+    /// Res Du/Dt of the last step's momentum equation at the points of
+    /// @p fe_values (this field's, with quadrature(), on the
+    /// @p owned_index-th owned cell in the order of the active cells), after
+    /// the step's solve and before advance_time(): the inertia of the
+    /// consistent forces' residual. Zero when Res = 0.
+    void
+    inertia(const FEValues<dim> &         fe_values,
+            const std::size_t             owned_index,
+            std::vector<Tensor<1, dim>> &result) const;
 
     /// The solution at t_n + @p offset extrapolated linearly from u^{n-1} and
     /// u^n, u^n while there is no u^{n-1} (Order = 1, the first step); the
@@ -290,6 +309,17 @@ namespace viscofilm
 
     void
     make_constraints(const double time);
+    /// Whether Res Du/Dt is BDF2 in the current step (u^{n-1} at hand).
+    bool
+    inertia_bdf2() const;
+    /// The weights (a, b, c) of Res (a u − b u^n + c u^{n-1})/… for a step
+    /// of length @p k: (Res/k)(1, 1, 0), or BDF2's with ω = k/k_{n-1}.
+    std::array<double, 3>
+    inertia_weights(const double k) const;
+    /// θ of the convecting velocity u* = (1 + θ) u^n − θ u^{n-1} at t_{n+1}
+    /// (Eulerian): k/k_{n-1} with BDF2, else 0.
+    double
+    convection_extrapolation() const;
     /// Shift the pressure to mean zero unless an outflow boundary fixes it.
     void
     normalize_pressure(TrilinosWrappers::MPI::BlockVector &distributed);
