@@ -69,7 +69,9 @@ namespace viscofilm
                       "in time at the point and the convection implicit in u, "
                       "linearised about u* = u^n (Order 1) or its extrapolation "
                       "2u^n − u^{n-1} (Order 2): a steady state independent of "
-                      "k, for steady flows at Re > 1. Its matrix is not "
+                      "k, for steady flows at Re > 1 (in the periodic DFG "
+                      "2D-2 it damps the vortex street more than the "
+                      "semi-Lagrangian step). Its matrix is not "
                       "symmetric; the block preconditioner approximates its "
                       "symmetric part, so at cell Reynolds numbers ρ|u|Δx/η "
                       "above about 10 use Method = direct.");
