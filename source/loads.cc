@@ -357,8 +357,8 @@ namespace viscofilm
     // boundary's velocity nodes and 0 at all others: the momentum equation's
     // weak form integrated by parts, ∫_Ω σ : ∇v = ∫_∂Ω σn · v − ∫_Ω ∇·σ · v,
     // with the step's own discretisation of the inertia (StokesSolver::
-    // inertia(); without it the drag at Re = 20 is 1 % low on the cylinder's
-    // level-3 mesh), evaluated with the assembly's quadrature, so that for a discrete solution it is the
+    // inertia(); without it DFG 2D-1's drag is 0.1 % lower), evaluated with
+    // the assembly's quadrature, so that for a discrete solution it is the
     // reaction of the constrained equations. v must be a finite element
     // function: hanging nodes take the values of the nodes they hang on.
     // Where the boundary meets another one (a channel's corners), v

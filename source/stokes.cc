@@ -54,7 +54,7 @@ namespace viscofilm
                       "a sparse LU factorisation of the whole system (Direct "
                       "solver), once per assembled matrix: robust at any "
                       "viscosity contrast and Reynolds number, in 2D up to "
-                      "about 1e5-1e6 unknowns. thesis: the thesis' solver, GMRES "
+                      "about 1e6 unknowns (2 GB a rank at 6e5). thesis: the thesis' solver, GMRES "
                       "(AztecOO) with an incomplete LU factorisation of the "
                       "whole system, as a baseline for benchmarks.");
     prm.declare_entry("Momentum convection",
@@ -80,7 +80,7 @@ namespace viscofilm
                       Patterns::Selection("MUMPS|KLU"),
                       "The factorisation of Method = direct (Trilinos Amesos). "
                       "MUMPS: multifrontal, distributed over the MPI ranks, "
-                      "with a nested-dissection ordering; 6 times faster "
+                      "with a nested-dissection ordering; 5 times faster "
                       "than KLU on 1.5e5 unknowns (doc/performance.md). KLU: "
                       "serial (on one rank), for small systems.");
     prm.declare_entry("Tolerance",

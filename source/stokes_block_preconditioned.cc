@@ -146,7 +146,8 @@ namespace viscofilm
                                       velocity_rhs.l2_norm());
               dst.block(0) = 0;
               // Eulerian convection makes the block unsymmetric: GMRES.
-              const bool symmetric = parameters.convection != StokesSolver<dim>::Convection::eulerian;
+              const bool symmetric =
+                parameters.convection != StokesSolver<dim>::Convection::eulerian;
               inner_solve(
                 [&] {
                   if (symmetric)

@@ -1,6 +1,6 @@
 // Stokes solver/Method = direct and thesis: the whole saddle-point system as
-// one matrix, factorised (Amesos MUMPS or KLU) or solved by the thesis' GMRES with
-// ILU(0), a baseline for benchmarks.
+// one matrix, factorised (Amesos MUMPS or KLU) or solved by the thesis'
+// GMRES with ILU(0), a baseline for benchmarks.
 #include <deal.II/dofs/dof_tools.h>
 
 #include <deal.II/lac/affine_constraints.templates.h>
@@ -113,9 +113,9 @@ namespace viscofilm
     };
 
 
-    /// Sparse LU (Amesos: MUMPS or KLU) of the whole system, factorised
-    /// once per assembled matrix: the Picard iterations of a step, which change only
-    /// the right-hand side, reuse it.
+    /// Sparse LU (Amesos: MUMPS or KLU) of the whole system, factorised once
+    /// per assembled matrix: the Picard iterations of a step, which change
+    /// only the right-hand side, reuse it.
     template <int dim>
     class Direct : public Monolithic<dim>
     {
