@@ -89,6 +89,7 @@ namespace viscofilm
         , iterate_strain_rate(quadrature.size())
         , phi_u(stokes_fe.n_dofs_per_cell())
         , grad_phi_u(stokes_fe.n_dofs_per_cell())
+        , convection(stokes_fe.n_dofs_per_cell(), stokes_fe.n_dofs_per_cell())
         , symgrad_phi_u(stokes_fe.n_dofs_per_cell())
         , div_phi_u(stokes_fe.n_dofs_per_cell())
         , phi_p(stokes_fe.n_dofs_per_cell())
@@ -116,6 +117,7 @@ namespace viscofilm
       std::vector<SymmetricTensor<2, dim>> iterate_strain_rate;
       std::vector<Tensor<1, dim>>          phi_u;
       std::vector<Tensor<2, dim>>          grad_phi_u;
+      FullMatrix<double>                   convection; // Eulerian (u*·∇)u
       std::vector<SymmetricTensor<2, dim>> symgrad_phi_u;
       std::vector<double>                  div_phi_u;
       std::vector<double>                  phi_p;
@@ -182,7 +184,6 @@ namespace viscofilm
     const bool bdf2 = inertia_bdf2();
     const auto [mass_coefficient, old_coefficient, older_coefficient] =
       inertia_weights(coefficients.time_step);
-    const double theta = convection_extrapolation();
     const ExpressionAt<dim> body_force_now = coefficients.body_force->at(coefficients.time);
     const ElasticStress<dim> &elastic_stress = *coefficients.elastic_stress;
 
@@ -271,8 +272,11 @@ namespace viscofilm
                     });
       FullMatrix<double> &cell_matrix = data.matrix;
       Vector<double> &    cell_rhs    = copy.rhs;
+      const bool convect = eulerian && need_matrix;
       cell_matrix = 0;
       cell_rhs    = 0;
+      if (convect)
+        scratch.convection = 0;
       for (unsigned int q = 0; q < n_q_points; ++q)
         {
           for (unsigned int k = 0; k < dofs_per_cell; ++k)
@@ -281,6 +285,8 @@ namespace viscofilm
               scratch.symgrad_phi_u[k] = fe_values[velocities].symmetric_gradient(k, q);
               scratch.div_phi_u[k]     = fe_values[velocities].divergence(k, q);
               scratch.phi_p[k]         = fe_values[pressure].value(k, q);
+              if (convect)
+                scratch.grad_phi_u[k] = fe_values[velocities].gradient(k, q);
             }
           const auto &   phi_u         = scratch.phi_u;
           const auto &   symgrad_phi_u = scratch.symgrad_phi_u;
@@ -323,6 +329,19 @@ namespace viscofilm
                       JxW;
                   }
             }
+          // Eulerian: the unsymmetric Res ((u*·∇)u, v), added after the
+          // mirroring.
+          if (convect)
+            {
+              const Tensor<1, dim> w =
+                model.density * JxW *
+                convecting_velocity(scratch.old_velocity[q], scratch.older_velocity[q]);
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                if (component[i] < dim)
+                  for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                    if (component[j] == component[i])
+                      scratch.convection(i, j) += phi_u[i] * (scratch.grad_phi_u[j] * w);
+            }
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
             cell_rhs(i) += (rhs_vector * phi_u[i] - phi_tau * symgrad_phi_u[i]) * JxW;
         }
@@ -330,24 +349,8 @@ namespace viscofilm
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
           for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
             cell_matrix(i, j) = cell_matrix(j, i);
-      // Eulerian: the unsymmetric Res ((u*·∇)u, v), after the mirroring.
-      if (eulerian && need_matrix)
-        for (unsigned int q = 0; q < n_q_points; ++q)
-          {
-            for (unsigned int k = 0; k < dofs_per_cell; ++k)
-              {
-                scratch.phi_u[k]      = fe_values[velocities].value(k, q);
-                scratch.grad_phi_u[k] = fe_values[velocities].gradient(k, q);
-              }
-            const Tensor<1, dim> w =
-              model.density * fe_values.JxW(q) *
-              ((1 + theta) * scratch.old_velocity[q] - theta * scratch.older_velocity[q]);
-            for (unsigned int i = 0; i < dofs_per_cell; ++i)
-              if (component[i] < dim)
-                for (unsigned int j = 0; j < dofs_per_cell; ++j)
-                  if (component[j] == component[i])
-                    cell_matrix(i, j) += scratch.phi_u[i] * (scratch.grad_phi_u[j] * w);
-          }
+      if (convect)
+        cell_matrix.add(1.0, scratch.convection);
 
       // −∫ P n·v ds (Type = pressure; outflow has P = 0).
       FEFaceValues<dim> &fe_face_values = scratch.fe_face_values;
@@ -441,12 +444,12 @@ namespace viscofilm
 
 
   template <int dim>
-  double
-  StokesSolver<dim>::convection_extrapolation() const
+  Tensor<1, dim>
+  StokesSolver<dim>::convecting_velocity(const Tensor<1, dim> &old_velocity,
+                                         const Tensor<1, dim> &older_velocity) const
   {
-    return parameters.convection == Convection::eulerian && inertia_bdf2() ?
-             step_length / previous_step :
-             0.0;
+    const double theta = inertia_bdf2() ? step_length / previous_step : 0.0;
+    return (1 + theta) * old_velocity - theta * older_velocity;
   }
 
 
@@ -482,11 +485,10 @@ namespace viscofilm
       result[q] = a * u[q] - b * old[q] + c * older[q];
     if (parameters.convection == Convection::eulerian)
       {
-        const double                theta = convection_extrapolation();
         std::vector<Tensor<2, dim>> grad_u(n_q_points);
         fe_values[velocities].get_function_gradients(current_solution, grad_u);
         for (unsigned int q = 0; q < n_q_points; ++q)
-          result[q] += model.density * (grad_u[q] * ((1 + theta) * old[q] - theta * older[q]));
+          result[q] += model.density * (grad_u[q] * convecting_velocity(old[q], older[q]));
       }
   }
 

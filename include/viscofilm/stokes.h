@@ -316,10 +316,12 @@ namespace viscofilm
     /// of length @p k: (Res/k)(1, 1, 0), or BDF2's with ω = k/k_{n-1}.
     std::array<double, 3>
     inertia_weights(const double k) const;
-    /// θ of the convecting velocity u* = (1 + θ) u^n − θ u^{n-1} at t_{n+1}
-    /// (Eulerian): k/k_{n-1} with BDF2, else 0.
-    double
-    convection_extrapolation() const;
+    /// The convecting velocity of the Eulerian step at t_{n+1} from u^n and
+    /// u^{n-1} at a point: u* = (1 + θ) u^n − θ u^{n-1}, θ = k/k_{n-1} with
+    /// BDF2, else 0 (u^n).
+    Tensor<1, dim>
+    convecting_velocity(const Tensor<1, dim> &old_velocity,
+                        const Tensor<1, dim> &older_velocity) const;
     /// Shift the pressure to mean zero unless an outflow boundary fixes it.
     void
     normalize_pressure(TrilinosWrappers::MPI::BlockVector &distributed);
