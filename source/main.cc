@@ -3,10 +3,10 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <viscofilm/input.h>
-#include <viscofilm/parameters.h>
-#include <viscofilm/problem.h>
-#include <viscofilm/version.h>
+#include <viscofilm/core/input.h>
+#include <viscofilm/core/parameters.h>
+#include <viscofilm/core/problem.h>
+#include <viscofilm/core/version.h>
 
 #include <filesystem>
 #include <fstream>

@@ -4,7 +4,7 @@
 // R = 0.25 on 20 × 20 pixels per page, pages 0.05 apart: sections parallel to
 // the bottom wall stacked along y, so the ball is centred at (0.5, 0, 0.5) on
 // 20 × 10 × 20 voxels of 0.05, sampled by ImageVolumeFraction<3>.
-#include <viscofilm/image.h>
+#include <viscofilm/biofilm/image.h>
 
 #include <cmath>
 #include <iostream>

@@ -1,0 +1,213 @@
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <viscofilm/core/dof_cell.h>
+#include <viscofilm/flow/stokes.h>
+#include <viscofilm/stress/stress.h>
+#include <viscofilm/postprocess/verification.h>
+#include <viscofilm/transport/volume_fraction.h>
+
+#include <cmath>
+
+namespace viscofilm
+{
+  template <int dim>
+  void
+  Verification<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Verification");
+    ParsedExpression<dim>::declare(prm,
+                              "Body force",
+                              zero_expression(dim),
+                              "Body force \"fx; fy\" (3D: \"fx; fy; fz\") "
+                              "added to the momentum equation, e.g. for a "
+                              "manufactured solution.");
+    prm.declare_entry("Exact solution",
+                      "",
+                      Patterns::Anything(),
+                      "Empty, or the exact \"u; v; p\" (3D: \"u; v; w; p\") as "
+                      "a muparser expression in x, y (, z), t: its L2 errors "
+                      "are written to statistics.csv "
+                      "(the pressure error modulo a constant when no boundary "
+                      "is 'outflow').");
+    prm.declare_entry("Exact stress",
+                      "",
+                      Patterns::Anything(),
+                      "Empty, or the exact \"τ_xx; τ_xy; τ_yy\" (3D: \"τ_xx; "
+                      "τ_xy; τ_xz; τ_yy; τ_yz; τ_zz\") in x, y (, z), t: "
+                      "statistics.csv gets stress_l2_error.");
+    prm.declare_entry("Exact volume fraction",
+                      "",
+                      Patterns::Anything(),
+                      "Empty, or the exact φ in x, y (, z), t: statistics.csv gets "
+                      "volume_fraction_l2_error.");
+    declare_function_constants(prm);
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  Verification<dim>::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Verification");
+    const std::string constants = prm.get("Function constants");
+    body_force.parse(prm.get("Body force"),
+                     constants,
+                     "Verification/Body force");
+    const auto optional_expression = [&](std::optional<ParsedExpression<dim>> &target,
+                                         const std::string &name,
+                                         const unsigned int n_components) {
+      target.reset();
+      if (!prm.get(name).empty())
+        {
+          target.emplace(n_components);
+          target->parse(prm.get(name), constants, "Verification/" + name);
+        }
+    };
+    optional_expression(exact_solution, "Exact solution", dim + 1);
+    optional_expression(exact_stress, "Exact stress", n_symmetric_components<dim>);
+    optional_expression(exact_volume_fraction, "Exact volume fraction", 1);
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  std::pair<double, double>
+  Verification<dim>::l2_errors(const StokesFlow<dim> &stokes,
+                          const double        time,
+                          const bool          pressure_up_to_constant) const
+  {
+    Assert(exact_solution, ExcInternalError());
+    const ExpressionAt<dim> exact = exact_solution->at(time);
+
+    const DoFHandler<dim> &dof_handler = stokes.dof_handler();
+    const QGauss<dim>      quadrature(dof_handler.get_fe().degree + 2);
+    FEValues<dim>          fe_values(stokes.mapping(),
+                          dof_handler.get_fe(),
+                          quadrature,
+                          update_values | update_quadrature_points |
+                            update_JxW_values);
+    std::vector<Vector<double>> numerical(quadrature.size(), Vector<double>(dim + 1));
+    std::vector<Vector<double>> reference(quadrature.size(), Vector<double>(dim + 1));
+
+    // sums: ∫|u − u_ex|², ∫(p − p_ex)², ∫(p − p_ex), |Ω|
+    double sums[4] = {0, 0, 0, 0};
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(stokes.solution(), numerical);
+          exact.vector_value_list(fe_values.get_quadrature_points(), reference);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              double velocity_squared = 0;
+              for (unsigned int d = 0; d < dim; ++d)
+                velocity_squared += std::pow(numerical[q][d] - reference[q][d], 2);
+              sums[0] += velocity_squared * fe_values.JxW(q);
+              const double dp = numerical[q][dim] - reference[q][dim];
+              sums[1] += dp * dp * fe_values.JxW(q);
+              sums[2] += dp * fe_values.JxW(q);
+              sums[3] += fe_values.JxW(q);
+            }
+        }
+    Utilities::MPI::sum(sums, dof_handler.get_communicator(), sums);
+    const double pressure_error_squared =
+      sums[1] - (pressure_up_to_constant ? sums[2] * sums[2] / sums[3] : 0.0);
+    return {std::sqrt(sums[0]), std::sqrt(std::max(pressure_error_squared, 0.0))};
+  }
+
+  namespace
+  {
+    /// ‖u_h − (f + offset)‖_L2 over all components of a field.
+    template <int dim>
+    double
+    field_l2_error(const Mapping<dim> &                   mapping,
+                   const DoFHandler<dim> &                dof_handler,
+                   const TrilinosWrappers::MPI::Vector &solution,
+                   const Function<dim> &                exact,
+                   const std::vector<double> &          offset)
+    {
+      const unsigned int n = offset.size();
+      const QGauss<dim>    quadrature(dof_handler.get_fe().degree + 2);
+      FEValues<dim>        fe_values(mapping,
+                            dof_handler.get_fe(),
+                            quadrature,
+                            update_values | update_quadrature_points |
+                              update_JxW_values);
+      std::vector<Vector<double>> numerical(quadrature.size(), Vector<double>(n));
+      std::vector<Vector<double>> reference(quadrature.size(), Vector<double>(n));
+      double                      sum = 0;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            fe_values.get_function_values(solution, numerical);
+            exact.vector_value_list(fe_values.get_quadrature_points(), reference);
+            for (unsigned int q = 0; q < quadrature.size(); ++q)
+              for (unsigned int c = 0; c < n; ++c)
+                sum += std::pow(numerical[q][c] - reference[q][c] - offset[c], 2) *
+                       fe_values.JxW(q);
+          }
+      return std::sqrt(Utilities::MPI::sum(sum, dof_handler.get_communicator()));
+    }
+  } // namespace
+
+
+  template <int dim>
+  double
+  Verification<dim>::stress_l2_error(const ElasticStress<dim> & stress,
+                                const VolumeFraction<dim> &volume_fraction,
+                                const double          time) const
+  {
+    const ExpressionAt<dim> exact = exact_stress->at(time);
+    const DoFHandler<dim> &dof_handler = stress.dof_handler();
+    const QGauss<dim>      quadrature(dof_handler.get_fe().degree + 2);
+    FEValues<dim>          fe_values(stress.mapping(),
+                          dof_handler.get_fe(),
+                          quadrature,
+                          update_values | update_quadrature_points | update_JxW_values);
+    FEValues<dim> phi_values(volume_fraction.dof_handler().get_fe(), quadrature, update_values);
+    std::vector<Vector<double>> conformation(quadrature.size(),
+                                             Vector<double>(n_symmetric_components<dim>));
+    std::vector<Vector<double>> reference(quadrature.size(),
+                                          Vector<double>(n_symmetric_components<dim>));
+    std::vector<double>         phi(quadrature.size());
+    double                      sum = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(stress.solution(), conformation);
+          phi_values.reinit(cell_of(volume_fraction.dof_handler(), cell));
+          phi_values.get_function_values(volume_fraction.solution(), phi);
+          exact.vector_value_list(fe_values.get_quadrature_points(), reference);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const SymmetricTensor<2, dim> tau = stress.stress_of(conformation[q], phi[q]);
+              double squared = 0;
+              for (unsigned int k = 0; k < n_symmetric_components<dim>; ++k)
+                squared += std::pow(stored_component(tau, k) - reference[q][k], 2);
+              sum += squared * fe_values.JxW(q);
+            }
+        }
+    return std::sqrt(Utilities::MPI::sum(sum, dof_handler.get_communicator()));
+  }
+
+
+  template <int dim>
+  double
+  Verification<dim>::volume_fraction_l2_error(const VolumeFraction<dim> &volume_fraction,
+                                         const double          time) const
+  {
+    return field_l2_error(volume_fraction.mapping(),
+                          volume_fraction.dof_handler(),
+                          volume_fraction.solution(),
+                          exact_volume_fraction->at(time),
+                          {0.0});
+  }
+
+
+  VISCOFILM_INSTANTIATE(Verification)
+} // namespace viscofilm
