@@ -516,7 +516,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  Detachment<dim>::add_output(DataOut<dim> &data_out) const
+  Detachment<dim>::add_output(DataOut<dim> &data_out)
   {
     if (parameters.enabled)
       detached.add_output(data_out);
@@ -548,18 +548,20 @@ namespace viscofilm
 
 
   template <int dim>
-  typename Detachment<dim>::Totals
-  Detachment<dim>::totals() const
+  void
+  Detachment<dim>::save_state(CheckpointValues &values) const
   {
-    return total;
+    values["detached"]         = total.released;
+    values["detached_outflow"] = total.outflow;
   }
 
 
   template <int dim>
   void
-  Detachment<dim>::set_totals(const Totals &totals)
+  Detachment<dim>::load_state(const CheckpointValues &values)
   {
-    total = totals;
+    total.released = checkpoint_value(values, "detached");
+    total.outflow  = checkpoint_value(values, "detached_outflow");
   }
 
 

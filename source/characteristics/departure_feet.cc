@@ -8,6 +8,7 @@
 #include <viscofilm/geometry/boundary_conditions.h>
 #include <viscofilm/characteristics/departure_feet.h>
 #include <viscofilm/core/input.h>
+#include <viscofilm/postprocess/output.h>
 
 #include <algorithm>
 #include <optional>
@@ -775,10 +776,13 @@ namespace viscofilm
 
 
   template <int dim>
-  const typename DepartureFeet<dim>::Statistics &
-  DepartureFeet<dim>::statistics() const
+  void
+  DepartureFeet<dim>::add_statistics(CsvFile &statistics) const
   {
-    return accumulated;
+    statistics.set("feet_newton_iterations", accumulated.max_newton_iterations);
+    statistics.set("feet_left_cell", accumulated.n_left_cell);
+    statistics.set("feet_left_domain", accumulated.n_left_domain);
+    statistics.set("feet_substepped", accumulated.n_substepped);
   }
 
 

@@ -97,6 +97,17 @@ namespace viscofilm
   } // namespace
 
 
+  double
+  checkpoint_value(const CheckpointValues &values, const std::string &name)
+  {
+    const auto value = values.find(name);
+    check_input(value != values.end(),
+                "Checkpointing/Resume: the checkpoint does not record " + name +
+                  " (written by another version of viscofilm)");
+    return value->second;
+  }
+
+
   template <int dim>
   void
   Checkpoint<dim>::Parameters::declare_parameters(ParameterHandler &prm)
@@ -182,13 +193,9 @@ namespace viscofilm
       {
         std::ofstream out(staging + "/state");
         out << std::setprecision(17) << "step " << state.step << "\ntime "
-            << state.time << "\nprevious_time_step " << state.previous_time_step
-            << "\ndetached " << state.detached.released << "\ndetached_outflow "
-            << state.detached.outflow << "\nvolume_fraction_net "
-            << state.volume_fraction.net << "\nvolume_fraction_outflow "
-            << state.volume_fraction.outflow << "\nvolume_fraction_inflow "
-            << state.volume_fraction.inflow << "\nnext_time_step "
-            << state.next_time_step << "\n";
+            << state.time << "\nnext_time_step " << state.next_time_step << "\n";
+        for (const auto &[name, value] : state.values)
+          out << name << " " << value << "\n";
         for (const auto &[path, value] : critical_entries(prm))
           out << "parameter " << path << " = " << value << "\n";
         out << "snapshots\n";
@@ -242,25 +249,18 @@ namespace viscofilm
     in >> word >> state.step >> word >> state.time;
     std::getline(in, line);
     // "name value" lines of the state, then "parameter path = value" lines.
-    const std::map<std::string, double *> numbers = {
-      {"previous_time_step", &state.previous_time_step},
-      {"detached", &state.detached.released},
-      {"detached_outflow", &state.detached.outflow},
-      {"volume_fraction_net", &state.volume_fraction.net},
-      {"volume_fraction_outflow", &state.volume_fraction.outflow},
-      {"volume_fraction_inflow", &state.volume_fraction.inflow},
-      {"next_time_step", &state.next_time_step}};
     std::map<std::string, std::string> saved;
     while (std::getline(in, line) && line != "snapshots")
       {
-        const std::string name   = line.substr(0, line.find(' '));
-        const auto        number = numbers.find(name);
-        if (number != numbers.end())
-          *number->second = std::stod(line.substr(name.size() + 1));
-        else
+        const std::string name = line.substr(0, line.find(' '));
+        if (name == "parameter")
           saved[line.substr(10, line.find(" = ") - 10)] =
             line.substr(line.find(" = ") + 3);
+        else
+          state.values[name] = std::stod(line.substr(name.size() + 1));
       }
+    state.next_time_step = checkpoint_value(state.values, "next_time_step");
+    state.values.erase("next_time_step");
     for (const auto &[path, value] : critical_entries(prm))
       {
         const auto entry = saved.find(path);

@@ -72,7 +72,8 @@ namespace viscofilm
              parameters.model,
              parameters.boundary_conditions,
              parameters.time_stepping.order,
-             stokes.quadrature())
+             stokes.quadrature(),
+             volume_fraction)
     , departure_feet(parameters.departure_feet, triangulation, mapping)
     , loads(parameters.loads,
             parameters.model,
@@ -92,6 +93,8 @@ namespace viscofilm
     , checkpoint(parameters.checkpointing, parameters.output.directory, comm)
     // A checkpoint attaches the fields' vectors in this order.
     , fields{&stokes, &stress, &volume_fraction}
+    // statistics.csv's columns and the snapshots' datasets in this order.
+    , reporters{&stokes, &volume_fraction, &stress, &departure_feet, &loads, &detachment}
   {
     if (VolumeFraction<dim> *detached = detachment.detached_fraction())
       fields.push_back(detached);
@@ -227,14 +230,10 @@ namespace viscofilm
     triangulation.save(mesh_file);
     for (FieldBase<dim> *field : fields)
       field->checkpoint_written();
-    checkpoint.commit({step,
-                       time,
-                       stokes.previous_time_step(),
-                       proposed_time_step,
-                       output.snapshots(),
-                       detachment.totals(),
-                       volume_fraction.boundary_exchange()},
-                      prm);
+    typename Checkpoint<dim>::State state{step, time, proposed_time_step, output.snapshots(), {}};
+    for (const Reporter<dim> *reporter : reporters)
+      reporter->save_state(state.values);
+    checkpoint.commit(state, prm);
   }
 
 
@@ -252,9 +251,8 @@ namespace viscofilm
     setup_dofs();
     for (FieldBase<dim> *field : fields)
       field->finish_refinement();
-    stokes.set_previous_time_step(state.previous_time_step);
-    detachment.set_totals(state.detached);
-    volume_fraction.set_boundary_exchange(state.volume_fraction);
+    for (Reporter<dim> *reporter : reporters)
+      reporter->load_state(state.values);
     mesh_changed();
     proposed_time_step = state.next_time_step;
     output.prepare(prm, state.step, state.snapshots);
@@ -510,11 +508,8 @@ namespace viscofilm
     statistics.set("time", time);
     statistics.set("time_step", time_step);
     statistics.set("cfl", step_cfl);
-    const double max_velocity = stokes.max_velocity();
     statistics.set("cells", triangulation.n_global_active_cells());
     statistics.set("stokes_iterations", report.total_stokes_iterations);
-    statistics.set("stokes_preconditioner_builds", stokes.n_preconditioner_builds());
-    statistics.set("stokes_viscosity_change", stokes.viscosity_change_since_build());
     statistics.set("picard_iterations", report.picard_iterations);
     statistics.set("picard_converged", report.picard_converged);
     statistics.set("picard_velocity_change", report.picard_velocity_change);
@@ -522,17 +517,8 @@ namespace viscofilm
     statistics.set("transport_iterations", report.transport_iterations);
     statistics.set("error_estimate", report.error_estimate);
     statistics.set("rejected_steps", report.rejected_steps);
-    statistics.set("max_velocity", max_velocity);
-    statistics.set("max_cell_divergence", stokes.max_cell_divergence());
-    statistics.set("volume_fraction_integral", volume_fraction.integral());
-    const typename VolumeFraction<dim>::Exchange exchange = volume_fraction.boundary_exchange();
-    statistics.set("volume_fraction_outflow", exchange.outflow);
-    statistics.set("volume_fraction_inflow", exchange.inflow);
-    const auto [phi_min, phi_max] = volume_fraction.range();
-    statistics.set("volume_fraction_min", phi_min);
-    statistics.set("volume_fraction_max", phi_max);
-    if (parameters.volume_fraction.flux_corrected)
-      statistics.set("volume_fraction_substeps", volume_fraction.substeps());
+    for (const Reporter<dim> *reporter : reporters)
+      reporter->add_statistics(statistics);
     if (parameters.verification.exact_solution)
       {
         const auto [velocity_error, pressure_error] =
@@ -548,17 +534,6 @@ namespace viscofilm
       statistics.set("volume_fraction_l2_error",
                      parameters.verification.volume_fraction_l2_error(volume_fraction,
                                                                       time));
-    loads.add_statistics(statistics);
-    detachment.add_statistics(statistics);
-    statistics.set("min_conformation_eigenvalue", stress.min_eigenvalue());
-    const typename DepartureFeet<dim>::Statistics &feet = departure_feet.statistics();
-    statistics.set("feet_newton_iterations", feet.max_newton_iterations);
-    statistics.set("feet_left_cell", feet.n_left_cell);
-    statistics.set("feet_left_domain", feet.n_left_domain);
-    statistics.set("feet_substepped", feet.n_substepped);
-    statistics.set("feet_remote", stress.n_remote_feet());
-    statistics.set("feet_positivity_fixes", stress.n_positivity_fixes());
-    statistics.set("conformation_repairs", stress.n_positivity_repairs());
     statistics.write_row();
   }
 
@@ -573,11 +548,8 @@ namespace viscofilm
     output.write_probes(step, time, stokes, volume_fraction, stress);
     if (output.snapshot_due(step, last_step))
       output.write_snapshot(step, time, [this](DataOut<dim> &data_out) {
-        stokes.add_output(data_out);
-        volume_fraction.add_output(data_out);
-        stress.add_output(data_out, volume_fraction);
-        loads.add_output(data_out);
-        detachment.add_output(data_out);
+        for (Reporter<dim> *reporter : reporters)
+          reporter->add_output(data_out);
       });
   }
 

@@ -509,14 +509,6 @@ namespace viscofilm
 
 
   template <int dim>
-  double
-  StokesFlow<dim>::previous_time_step() const
-  {
-    return previous_step;
-  }
-
-
-  template <int dim>
   const TrilinosWrappers::MPI::BlockVector &
   StokesFlow<dim>::start_of_step_solution() const
   {
@@ -550,6 +542,22 @@ namespace viscofilm
   StokesFlow<dim>::set_previous_time_step(const double time_step)
   {
     previous_step = time_step;
+  }
+
+
+  template <int dim>
+  void
+  StokesFlow<dim>::save_state(CheckpointValues &values) const
+  {
+    values["previous_time_step"] = previous_step;
+  }
+
+
+  template <int dim>
+  void
+  StokesFlow<dim>::load_state(const CheckpointValues &values)
+  {
+    previous_step = checkpoint_value(values, "previous_time_step");
   }
 
 

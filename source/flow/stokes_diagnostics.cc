@@ -8,6 +8,7 @@
 #include <deal.II/numerics/error_estimator.h>
 
 #include <viscofilm/flow/stokes.h>
+#include <viscofilm/postprocess/output.h>
 
 #include <cmath>
 
@@ -85,7 +86,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  StokesFlow<dim>::add_output(DataOut<dim> &data_out) const
+  StokesFlow<dim>::add_output(DataOut<dim> &data_out)
   {
     std::vector<std::string> names(dim, "velocity");
     names.push_back("pressure");
@@ -96,6 +97,17 @@ namespace viscofilm
     // DataOut keeps a pointer to the postprocessor until it is done.
     static const FlowPostprocessor<dim> flow_postprocessor;
     data_out.add_data_vector(dofs, current_solution, flow_postprocessor);
+  }
+
+
+  template <int dim>
+  void
+  StokesFlow<dim>::add_statistics(CsvFile &statistics) const
+  {
+    statistics.set("stokes_preconditioner_builds", n_preconditioner_builds());
+    statistics.set("stokes_viscosity_change", viscosity_change_since_build());
+    statistics.set("max_velocity", max_velocity());
+    statistics.set("max_cell_divergence", max_cell_divergence());
   }
 
 
@@ -201,7 +213,8 @@ namespace viscofilm
   // members it defines (an explicit instantiation of the whole class in two
   // files would be ill-formed).
 #define INSTANTIATE(dim)                                                          \
-  template void StokesFlow<dim>::add_output(DataOut<dim> &) const;                \
+  template void StokesFlow<dim>::add_output(DataOut<dim> &);                      \
+  template void StokesFlow<dim>::add_statistics(CsvFile &) const;                 \
   template double StokesFlow<dim>::max_velocity() const;                          \
   template double StokesFlow<dim>::max_cell_divergence() const;                   \
   template Vector<float> StokesFlow<dim>::velocity_error_indicator() const;       \

@@ -211,7 +211,8 @@ namespace viscofilm
     const Model &                                  model,
     const BoundaryConditions<dim> &                boundary_conditions,
     const unsigned int                             order,
-    const Quadrature<dim> &                        stokes_quadrature)
+    const Quadrature<dim> &                        stokes_quadrature,
+    const VolumeFraction<dim> &                    volume_fraction)
     : FieldType(triangulation, mapping)
     , triangulation(triangulation)
     , parameters(parameters)
@@ -223,6 +224,7 @@ namespace viscofilm
            static_cast<const FiniteElement<dim> &>(FE_Q<dim>(2)),
          n_symmetric_components<dim>)
     , stokes_quadrature(stokes_quadrature)
+    , output_volume_fraction(volume_fraction)
   {}
 
 
@@ -934,10 +936,21 @@ namespace viscofilm
 
   template <int dim>
   void
-  ElasticStress<dim>::add_output(DataOut<dim> &data_out, const VolumeFraction<dim> &volume_fraction)
+  ElasticStress<dim>::add_output(DataOut<dim> &data_out)
   {
-    tau_postprocessor = std::make_unique<StressPostprocessor<dim>>(*this, volume_fraction);
+    tau_postprocessor = std::make_unique<StressPostprocessor<dim>>(*this, output_volume_fraction);
     data_out.add_data_vector(dofs, current_solution, *tau_postprocessor);
+  }
+
+
+  template <int dim>
+  void
+  ElasticStress<dim>::add_statistics(CsvFile &statistics) const
+  {
+    statistics.set("min_conformation_eigenvalue", min_eigenvalue());
+    statistics.set("feet_remote", n_remote_feet());
+    statistics.set("feet_positivity_fixes", n_positivity_fixes());
+    statistics.set("conformation_repairs", n_positivity_repairs());
   }
 
 

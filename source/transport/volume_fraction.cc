@@ -17,6 +17,7 @@
 #include <viscofilm/characteristics/departure_feet.h>
 #include <viscofilm/core/input.h>
 #include <viscofilm/flow/stokes.h>
+#include <viscofilm/postprocess/output.h>
 #include <viscofilm/transport/volume_fraction.h>
 
 #include <algorithm>
@@ -783,18 +784,38 @@ namespace viscofilm
 
 
   template <int dim>
-  typename VolumeFraction<dim>::Exchange
-  VolumeFraction<dim>::boundary_exchange() const
+  void
+  VolumeFraction<dim>::add_statistics(CsvFile &statistics) const
   {
-    return exchange;
+    statistics.set("volume_fraction_integral", integral());
+    statistics.set("volume_fraction_outflow", exchange.outflow);
+    statistics.set("volume_fraction_inflow", exchange.inflow);
+    const auto [phi_min, phi_max] = range();
+    statistics.set("volume_fraction_min", phi_min);
+    statistics.set("volume_fraction_max", phi_max);
+    if (parameters.flux_corrected)
+      statistics.set("volume_fraction_substeps", substeps());
   }
 
 
   template <int dim>
   void
-  VolumeFraction<dim>::set_boundary_exchange(const Exchange &totals)
+  VolumeFraction<dim>::save_state(CheckpointValues &values) const
   {
-    exchange = old_exchange = totals;
+    values["volume_fraction_net"]     = exchange.net;
+    values["volume_fraction_outflow"] = exchange.outflow;
+    values["volume_fraction_inflow"]  = exchange.inflow;
+  }
+
+
+  template <int dim>
+  void
+  VolumeFraction<dim>::load_state(const CheckpointValues &values)
+  {
+    exchange.net     = checkpoint_value(values, "volume_fraction_net");
+    exchange.outflow = checkpoint_value(values, "volume_fraction_outflow");
+    exchange.inflow  = checkpoint_value(values, "volume_fraction_inflow");
+    old_exchange     = exchange;
   }
 
 
@@ -822,7 +843,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  VolumeFraction<dim>::add_output(DataOut<dim> &data_out) const
+  VolumeFraction<dim>::add_output(DataOut<dim> &data_out)
   {
     data_out.add_data_vector(dofs, current_solution, name);
   }

@@ -30,7 +30,7 @@ namespace viscofilm
   class DepartureFeet;
 
   template <int dim>
-  class Detachment
+  class Detachment : public Reporter<dim>
   {
   public:
     struct Parameters
@@ -104,11 +104,11 @@ namespace viscofilm
     /// with Detachment/Release = true, so that other runs' files keep their
     /// columns.
     void
-    add_statistics(CsvFile &statistics) const;
+    add_statistics(CsvFile &statistics) const override;
 
     /// phi_detached in the snapshots (with Release = true).
     void
-    add_output(DataOut<dim> &data_out) const;
+    add_output(DataOut<dim> &data_out) override;
 
     /// φ_d, for the refinement indicator and Problem's list of fields; null
     /// with Release = false.
@@ -117,10 +117,11 @@ namespace viscofilm
     VolumeFraction<dim> *
     detached_fraction();
 
-    Totals
-    totals() const;
+    /// The Totals (detached, detached_outflow).
     void
-    set_totals(const Totals &totals);
+    save_state(CheckpointValues &values) const override;
+    void
+    load_state(const CheckpointValues &values) override;
 
   private:
     /// The criterion's load at each owned node of φ in the biofilm (mean

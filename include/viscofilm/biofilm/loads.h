@@ -13,6 +13,7 @@
 #include <deal.II/numerics/data_postprocessor.h>
 
 #include <viscofilm/core/dimension.h>
+#include <viscofilm/core/reporter.h>
 #include <viscofilm/material/model.h>
 
 #include <algorithm>
@@ -35,7 +36,7 @@ namespace viscofilm
   class BoundaryConditions;
 
   template <int dim>
-  class BiofilmLoads
+  class BiofilmLoads : public Reporter<dim>
   {
   public:
     struct Parameters
@@ -92,11 +93,11 @@ namespace viscofilm
     /// (and force_z_<name> in 3D) per force boundary: per unit depth in 2D,
     /// totals in 3D (collective).
     void
-    add_statistics(CsvFile &statistics) const;
+    add_statistics(CsvFile &statistics) const override;
 
     /// Fields shear_stress (σ_xy) and von_mises (σ_vm) in the snapshots.
     void
-    add_output(DataOut<dim> &data_out);
+    add_output(DataOut<dim> &data_out) override;
 
   private:
     /// The force the fluid exerts on each force boundary (collective).

@@ -20,6 +20,7 @@
 #include <deal.II/matrix_free/fe_point_evaluation.h>
 
 #include <viscofilm/core/dimension.h>
+#include <viscofilm/core/reporter.h>
 
 #include <array>
 #include <functional>
@@ -156,7 +157,7 @@ namespace viscofilm
                     const TrilinosWrappers::MPI::BlockVector &stokes_solution);
 
   template <int dim>
-  class DepartureFeet
+  class DepartureFeet : public Reporter<dim>
   {
   public:
     struct Parameters
@@ -219,9 +220,11 @@ namespace viscofilm
     const std::vector<types::boundary_id> &
     inflow_boundaries() const;
 
-    /// Statistics since the last reset_statistics().
-    const Statistics &
-    statistics() const;
+    /// statistics.csv: the Statistics since the last reset_statistics()
+    /// (feet_newton_iterations, feet_left_cell, feet_left_domain,
+    /// feet_substepped).
+    void
+    add_statistics(CsvFile &statistics) const override;
 
     void
     reset_statistics();

@@ -7,7 +7,7 @@
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <viscofilm/biofilm/detachment.h>
+#include <viscofilm/core/reporter.h>
 
 #include <string>
 #include <vector>
@@ -36,14 +36,11 @@ namespace viscofilm
     {
       unsigned int           step      = 0;
       double                 time      = 0;
-      /// k_{n-1} of StokesFlow's u^{n-1} (Time stepping/Order = 2), or 0.
-      double                 previous_time_step = 0;
       /// The error controller's next step (0: none, TimeStepping).
       double                 next_time_step = 0;
       std::vector<XDMFEntry> snapshots;
-      typename Detachment<dim>::Totals detached; // released and carried out so far
-      /// What φ carried out and in through the boundary so far.
-      typename VolumeFraction<dim>::Exchange volume_fraction;
+      /// The components' scalars (Reporter::save_state).
+      CheckpointValues       values;
     };
 
     Checkpoint(const Parameters &parameters,

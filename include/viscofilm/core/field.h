@@ -18,6 +18,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <viscofilm/core/dimension.h>
+#include <viscofilm/core/reporter.h>
 #include <viscofilm/core/solution_carrier.h>
 
 #include <type_traits>
@@ -27,9 +28,10 @@ namespace viscofilm
 {
   using namespace dealii;
 
-  /// The life cycle of a field, what Problem calls on each of its fields.
+  /// The life cycle of a field, what Problem calls on each of its fields;
+  /// a field reports (Reporter) when Problem lists it among its reporters.
   template <int dim>
-  class FieldBase
+  class FieldBase : public Reporter<dim>
   {
   public:
     virtual ~FieldBase() = default;

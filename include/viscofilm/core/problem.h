@@ -144,6 +144,10 @@ namespace viscofilm
     Checkpoint<dim>                         checkpoint;
     /// Every field, for the life cycle (FieldBase): u and p, c, φ, φ_d.
     std::vector<FieldBase<dim> *>           fields;
+    /// Every component that reports (Reporter): statistics.csv's columns,
+    /// the snapshots' datasets and the checkpoint's scalars, in this order
+    /// (φ_d reports through the detachment).
+    std::vector<Reporter<dim> *>            reporters;
   };
 } // namespace viscofilm
 

@@ -222,10 +222,6 @@ namespace viscofilm
     void
     advance_time() override;
 
-    /// k_{n-1} = t_n − t_{n-1}, or 0 when there is no u^{n-1}.
-    double
-    previous_time_step() const;
-
     /// Res > 0, before the first step (after setup_dofs(), which leaves the
     /// constraints at t = 0): whether the initial condition u = 0 misses the
     /// velocity boundary data at t = 0, an impulsive start.
@@ -237,7 +233,7 @@ namespace viscofilm
     bool
     old_velocity_is_impulsive_start() const;
 
-    /// After a resume: the k_{n-1} the checkpoint recorded.
+    /// Set k_{n-1} = t_n − t_{n-1} (0: there is no u^{n-1}).
     void
     set_previous_time_step(const double time_step);
 
@@ -263,7 +259,18 @@ namespace viscofilm
     /// Add velocity, pressure and the derived divergence (∇·u), vorticity
     /// (∂v/∂x − ∂u/∂y) and inertia (|u·∇u|) to @p data_out.
     void
-    add_output(DataOut<dim> &data_out) const;
+    add_output(DataOut<dim> &data_out) override;
+
+    /// statistics.csv: stokes_preconditioner_builds,
+    /// stokes_viscosity_change, max_velocity, max_cell_divergence.
+    void
+    add_statistics(CsvFile &statistics) const override;
+
+    /// k_{n-1} (previous_time_step).
+    void
+    save_state(CheckpointValues &values) const override;
+    void
+    load_state(const CheckpointValues &values) override;
 
     /// ‖u − u_prev‖_L2 / ‖u‖_L2 from the velocity of @p previous (ghosted)
     /// to the current one: the Picard criterion on u.

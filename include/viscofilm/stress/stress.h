@@ -75,14 +75,16 @@ namespace viscofilm
 
     /// @p order: Time stepping/Order (1: the thesis' update, eq. 3.44; 2:
     /// the Strang-split update of update()). @p stokes_quadrature: the one
-    /// the Stokes assembly asks τ at.
+    /// the Stokes assembly asks τ at. @p volume_fraction: the φ of the
+    /// output's τ.
     ElasticStress(const parallel::distributed::Triangulation<dim> &triangulation,
                   const Mapping<dim> &                           mapping,
                   const Parameters &                             parameters,
                   const Model &                                  model,
                   const BoundaryConditions<dim> &boundary_conditions,
                   const unsigned int        order,
-                  const Quadrature<dim> &   stokes_quadrature);
+                  const Quadrature<dim> &   stokes_quadrature,
+                  const VolumeFraction<dim> &volume_fraction);
 
     /// Distribute dofs and list the stress nodes.
     void
@@ -170,7 +172,12 @@ namespace viscofilm
 
     /// Add tau_xx, tau_xy, ... (stored order) to @p data_out (τ needs φ with phases).
     void
-    add_output(DataOut<dim> &data_out, const VolumeFraction<dim> &volume_fraction);
+    add_output(DataOut<dim> &data_out) override;
+
+    /// statistics.csv: min_conformation_eigenvalue, feet_remote,
+    /// feet_positivity_fixes, conformation_repairs.
+    void
+    add_statistics(CsvFile &statistics) const override;
 
   private:
     using FieldType = Field<dim, TrilinosWrappers::MPI::Vector>;
@@ -251,6 +258,7 @@ namespace viscofilm
 
     const FESystem<dim>             fe;
     const Quadrature<dim>           stokes_quadrature;
+    const VolumeFraction<dim> &     output_volume_fraction;
     std::vector<Node>             nodes;
     std::vector<unsigned int>     node_of_owned_dof; // component-0 dofs only
     std::array<unsigned int, Utilities::pow(3, dim)> lexicographic_node; // [ix + 3 iy (+ 9 iz)]

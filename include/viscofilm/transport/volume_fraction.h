@@ -136,7 +136,19 @@ namespace viscofilm
 
     /// Add the field (named as constructed) to @p data_out.
     void
-    add_output(DataOut<dim> &data_out) const;
+    add_output(DataOut<dim> &data_out) override;
+
+    /// statistics.csv: volume_fraction_integral, _outflow, _inflow (the
+    /// boundary exchange since t = 0, below), _min, _max and, with FCT,
+    /// _substeps.
+    void
+    add_statistics(CsvFile &statistics) const override;
+
+    /// The boundary exchange's totals.
+    void
+    save_state(CheckpointValues &values) const override;
+    void
+    load_state(const CheckpointValues &values) override;
 
     /// Bounded: φ's range and mass before a mesh change, restored after it.
     void
@@ -145,16 +157,6 @@ namespace viscofilm
     /// ∫_Ω φ dx.
     double
     integral() const;
-
-    /// What left and entered through the boundary since t = 0, by the
-    /// steps' fluxes k ∫_∂Ω φ^n u·n ds (u of the step's feet): ∫φ(t) +
-    /// outflow − inflow = ∫φ(0) up to the scheme's conservation error
-    /// (doc/detachment.md, "Mass balance").
-    Exchange
-    boundary_exchange() const;
-    /// A checkpoint's totals.
-    void
-    set_boundary_exchange(const Exchange &totals);
 
     /// Smallest and largest nodal value (@p free_nodes: of the nodes no
     /// constraint sets, which a hanging node's interpolant can overshoot).
