@@ -85,7 +85,7 @@ def run_case(binary, prm_text, directory, ranks, reuse=False, threads=None):
     viscofilm --threads threads, and the ranks unbound (Open MPI binds each
     rank to one core by default when there are at most two) and yielding
     while they wait: unbound ranks that poll can share one core on a loaded
-    machine (doc/performance.md, "Unbound ranks on a loaded machine")."""
+    machine (doc/performance-implementation.md, "Unbound ranks on a loaded machine")."""
     os.makedirs(directory, exist_ok=True)
     log_file = os.path.join(directory, "run.log")
     cached = reuse and os.path.exists(log_file) and "Total wallclock" in open(log_file).read()

@@ -25,7 +25,7 @@ mean. A run that reaches its last step unsteady is marked in the table.
 
 --study runs the table of the issue's target: the meshes, Picard cap and
 tolerance of STUDY and, per Wi, the time step and Order chosen by
-measurement (doc/verification.md, "Order 2 (session 23)"); --wi and
+measurement (doc/benchmarks.md, "The time step at small Wi"); --wi and
 --levels pick rows and columns of it.
 
 Every run directory is named by its mesh, Wi, k and Order
@@ -97,7 +97,7 @@ POLL_SECONDS = 2.0
 CHECKPOINT_STEPS = 50
 
 # The study (--study): the meshes, and per Wi the time step and Order chosen
-# by the measurements of doc/verification.md ("Order 2 (session 23)"):
+# by the measurements of doc/benchmarks.md ("The time step at small Wi"):
 # Order 2 removes the O(k/λ) steady-state error of Order 1's relaxation
 # (Wi = 0.1: 0.01 % from k = 0.04 to 0.02), and from level 3 on K hardly
 # depends on k (Wi = 0.3: 0.003 %), so k = 0.04 at every Wi.
@@ -187,7 +187,7 @@ def steadiness(rows, window):
     (None if the run is not that long yet), wobble the relative range of K
     in the last window. Means, not the last value: at Wi = 0.5 with three
     Picard iterations K cycles with period 4 steps by ±4e-4 about a steady
-    mean (doc/verification.md, "Order 2 (session 23)")."""
+    mean (doc/benchmarks.md, "The time step at small Wi")."""
     key = force_column(rows[-1])
     t_end = rows[-1]["time"]
     if window == 0:

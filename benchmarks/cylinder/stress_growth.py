@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """benchmarks/cylinder/stress_growth.py -- where the elastic stress of a
-cylinder run changes between two of its HDF5 snapshots (doc/verification.md,
-"Where the late rise comes from").
+cylinder run changes between two of its HDF5 snapshots (doc/benchmarks.md,
+"Wi ≥ 0.6: the stagnation points and the wake's strand").
 
 Usage:  benchmarks/cylinder/stress_growth.py RUN_DIRECTORY [--from STEP] [--to STEP]
                                              [--count N]

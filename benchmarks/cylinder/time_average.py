@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """benchmarks/cylinder/time_average.py -- the drag of a cylinder run that
-cycles instead of settling: K's mean over whole periods (doc/verification.md,
-"Wider bands, the wake refined, and the cycle's mean").
+cycles instead of settling: K's mean over whole periods (doc/benchmarks.md,
+"Wi ≥ 0.6: the stagnation points and the wake's strand").
 
 Usage:  benchmarks/cylinder/time_average.py RUN_DIRECTORY... [--from T] [--published K]
                                               [--label NAME]... [--plot FILE.png]

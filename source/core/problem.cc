@@ -385,10 +385,10 @@ namespace viscofilm
     //       and the matrix reassembled with η(φ^{n+1,l}) while η moves by
     //       more than the Picard tolerance (relative, at φ's nodes) from the
     //       η the matrix has: below that the loop's u could not tell the
-    //       two matrices apart (doc/numerics.md, "Reassembly at Order 2";
+    //       two matrices apart (doc/numerics-transport.md, "Reassembly at Order 2";
     //       the right-hand side is always of φ^{n+1,l}). Order 1 (the thesis,
     //       MODEL.md §3): φ after the loop with u^{n+1}, so the step's Stokes
-    //       problem has η(φ^n) and s(φ^n), an O(k) lag (doc/numerics.md, "The
+    //       problem has η(φ^n) and s(φ^n), an O(k) lag (doc/numerics-transport.md, "The
     //       coupled step at Order 2").
     //    (l = 1 starts from φ^n and c^n.) Without elastic stress and with η
     //    independent of φ one Stokes solve is the whole step.

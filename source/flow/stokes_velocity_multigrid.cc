@@ -1,4 +1,4 @@
-// Geometric multigrid for the Stokes velocity block (doc/numerics.md, "The
+// Geometric multigrid for the Stokes velocity block (doc/numerics-stokes.md, "The
 // velocity block's geometric multigrid"): the deal.II step-75 pattern
 // (global coarsening, matrix-free levels, Chebyshev smoothing, CG with AMG
 // on the coarse mesh) with a cell-wise viscosity. This file holds the mesh

@@ -1,6 +1,6 @@
 // Stabilization/Volume fraction scheme = FCT: algebraic flux correction
 // (Kuzmin's monolithic convex limiting) of the Galerkin convection of φ towards its
-// discrete upwinding, SSP-RK3 in time (doc/numerics.md, "Flux-corrected
+// discrete upwinding, SSP-RK3 in time (doc/numerics-transport.md, "Flux-corrected
 // transport").
 #include <deal.II/base/quadrature_lib.h>
 
