@@ -2,6 +2,10 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include <deal.II/grid/grid_tools.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
 #include <viscofilm/core/dof_cell.h>
 #include <viscofilm/flow/stokes.h>
 #include <viscofilm/stress/stress.h>
@@ -73,6 +77,35 @@ namespace viscofilm
   }
 
 
+  namespace
+  {
+    /// The norm @p norm of u_h − @p exact over the components @p mask selects
+    /// (all: null), summed over the cells of every rank.
+    template <int dim, typename VectorType>
+    double
+    global_error(const Mapping<dim> &         mapping,
+                 const DoFHandler<dim> &      dof_handler,
+                 const VectorType &           solution,
+                 const Function<dim> &        exact,
+                 const VectorTools::NormType  norm,
+                 const Function<dim> *        mask = nullptr)
+    {
+      Vector<double> cellwise(dof_handler.get_triangulation().n_active_cells());
+      VectorTools::integrate_difference(mapping,
+                                        dof_handler,
+                                        solution,
+                                        exact,
+                                        cellwise,
+                                        QGauss<dim>(dof_handler.get_fe().degree + 2),
+                                        norm,
+                                        mask);
+      return VectorTools::compute_global_error(dof_handler.get_triangulation(),
+                                               cellwise,
+                                               norm);
+    }
+  } // namespace
+
+
   template <int dim>
   std::pair<double, double>
   Verification<dim>::l2_errors(const StokesFlow<dim> &stokes,
@@ -80,79 +113,22 @@ namespace viscofilm
                           const bool          pressure_up_to_constant) const
   {
     Assert(exact_solution, ExcInternalError());
-    const ExpressionAt<dim> exact = exact_solution->at(time);
-
-    const DoFHandler<dim> &dof_handler = stokes.dof_handler();
-    const QGauss<dim>      quadrature(dof_handler.get_fe().degree + 2);
-    FEValues<dim>          fe_values(stokes.mapping(),
-                          dof_handler.get_fe(),
-                          quadrature,
-                          update_values | update_quadrature_points |
-                            update_JxW_values);
-    std::vector<Vector<double>> numerical(quadrature.size(), Vector<double>(dim + 1));
-    std::vector<Vector<double>> reference(quadrature.size(), Vector<double>(dim + 1));
-
-    // sums: ∫|u − u_ex|², ∫(p − p_ex)², ∫(p − p_ex), |Ω|
-    double sums[4] = {0, 0, 0, 0};
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values.get_function_values(stokes.solution(), numerical);
-          exact.vector_value_list(fe_values.get_quadrature_points(), reference);
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              double velocity_squared = 0;
-              for (unsigned int d = 0; d < dim; ++d)
-                velocity_squared += std::pow(numerical[q][d] - reference[q][d], 2);
-              sums[0] += velocity_squared * fe_values.JxW(q);
-              const double dp = numerical[q][dim] - reference[q][dim];
-              sums[1] += dp * dp * fe_values.JxW(q);
-              sums[2] += dp * fe_values.JxW(q);
-              sums[3] += fe_values.JxW(q);
-            }
-        }
-    Utilities::MPI::sum(sums, dof_handler.get_communicator(), sums);
-    const double pressure_error_squared =
-      sums[1] - (pressure_up_to_constant ? sums[2] * sums[2] / sums[3] : 0.0);
-    return {std::sqrt(sums[0]), std::sqrt(std::max(pressure_error_squared, 0.0))};
+    const ExpressionAt<dim>             exact = exact_solution->at(time);
+    const ComponentSelectFunction<dim> velocity(std::make_pair(0, dim), dim + 1);
+    const ComponentSelectFunction<dim> pressure(dim, dim + 1);
+    const auto error = [&](const VectorTools::NormType norm, const Function<dim> &mask) {
+      return global_error(
+        stokes.mapping(), stokes.dof_handler(), stokes.solution(), exact, norm, &mask);
+    };
+    double pressure_error_squared = std::pow(error(VectorTools::L2_norm, pressure), 2);
+    // Without the best constant shift: ‖e‖² − (∫e)²/|Ω|.
+    if (pressure_up_to_constant)
+      pressure_error_squared -=
+        std::pow(error(VectorTools::mean, pressure), 2) /
+        GridTools::volume(stokes.dof_handler().get_triangulation(), stokes.mapping());
+    return {error(VectorTools::L2_norm, velocity),
+            std::sqrt(std::max(pressure_error_squared, 0.0))};
   }
-
-  namespace
-  {
-    /// ‖u_h − (f + offset)‖_L2 over all components of a field.
-    template <int dim>
-    double
-    field_l2_error(const Mapping<dim> &                   mapping,
-                   const DoFHandler<dim> &                dof_handler,
-                   const TrilinosWrappers::MPI::Vector &solution,
-                   const Function<dim> &                exact,
-                   const std::vector<double> &          offset)
-    {
-      const unsigned int n = offset.size();
-      const QGauss<dim>    quadrature(dof_handler.get_fe().degree + 2);
-      FEValues<dim>        fe_values(mapping,
-                            dof_handler.get_fe(),
-                            quadrature,
-                            update_values | update_quadrature_points |
-                              update_JxW_values);
-      std::vector<Vector<double>> numerical(quadrature.size(), Vector<double>(n));
-      std::vector<Vector<double>> reference(quadrature.size(), Vector<double>(n));
-      double                      sum = 0;
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            fe_values.reinit(cell);
-            fe_values.get_function_values(solution, numerical);
-            exact.vector_value_list(fe_values.get_quadrature_points(), reference);
-            for (unsigned int q = 0; q < quadrature.size(); ++q)
-              for (unsigned int c = 0; c < n; ++c)
-                sum += std::pow(numerical[q][c] - reference[q][c] - offset[c], 2) *
-                       fe_values.JxW(q);
-          }
-      return std::sqrt(Utilities::MPI::sum(sum, dof_handler.get_communicator()));
-    }
-  } // namespace
 
 
   template <int dim>
@@ -201,11 +177,11 @@ namespace viscofilm
   Verification<dim>::volume_fraction_l2_error(const VolumeFraction<dim> &volume_fraction,
                                          const double          time) const
   {
-    return field_l2_error(volume_fraction.mapping(),
-                          volume_fraction.dof_handler(),
-                          volume_fraction.solution(),
-                          exact_volume_fraction->at(time),
-                          {0.0});
+    return global_error(volume_fraction.mapping(),
+                        volume_fraction.dof_handler(),
+                        volume_fraction.solution(),
+                        exact_volume_fraction->at(time),
+                        VectorTools::L2_norm);
   }
 
 

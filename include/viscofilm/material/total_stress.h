@@ -27,20 +27,13 @@ namespace viscofilm
   /// von Mises equivalent sqrt(3 J2) of σ, J2 = ½ s:s of its deviator s in
   /// dim dimensions: (σ_xx − σ_yy)²/4 + σ_xy² in 2D (the in-plane deviator),
   /// [(σ_xx − σ_yy)² + (σ_yy − σ_zz)² + (σ_zz − σ_xx)²]/6 + σ_xy² + σ_xz² +
-  /// σ_yz² in 3D: Σ_{i<j} (σ_ii − σ_jj)²/(2 dim) + σ_ij².
+  /// σ_yz² in 3D.
   template <int dim>
   inline double
   von_mises(const SymmetricTensor<2, dim> &sigma)
   {
-    double normal = 0, shear = 0;
-    for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int j = i + 1; j < dim; ++j)
-        {
-          const double difference = sigma[i][i] - sigma[j][j];
-          normal += difference * difference;
-          shear += sigma[i][j] * sigma[i][j];
-        }
-    return std::sqrt(3 * (normal / (2 * dim) + shear));
+    const SymmetricTensor<2, dim> s = deviator(sigma);
+    return std::sqrt(1.5 * scalar_product(s, s));
   }
 
 
