@@ -97,6 +97,14 @@ namespace viscofilm
   } // namespace
 
 
+  namespace
+  {
+    /// The layout of the saved vectors: 2 since each field's vectors are
+    /// stored together (one SolutionTransfer per field).
+    constexpr double format = 2;
+  } // namespace
+
+
   double
   checkpoint_value(const CheckpointValues &values, const std::string &name)
   {
@@ -193,7 +201,8 @@ namespace viscofilm
       {
         std::ofstream out(staging + "/state");
         out << std::setprecision(17) << "step " << state.step << "\ntime "
-            << state.time << "\nnext_time_step " << state.next_time_step << "\n";
+            << state.time << "\nformat " << format << "\nnext_time_step "
+            << state.next_time_step << "\n";
         for (const auto &[name, value] : state.values)
           out << name << " " << value << "\n";
         for (const auto &[path, value] : critical_entries(prm))
@@ -259,7 +268,12 @@ namespace viscofilm
         else
           state.values[name] = std::stod(line.substr(name.size() + 1));
       }
+    check_input(state.values.count("format") == 1 && state.values.at("format") == format,
+                "Checkpointing/Resume: the checkpoint in \"" + directory +
+                  "\" was written by an older viscofilm, which stored the "
+                  "fields' vectors differently; start the run anew (Resume = false)");
     state.next_time_step = checkpoint_value(state.values, "next_time_step");
+    state.values.erase("format");
     state.values.erase("next_time_step");
     for (const auto &[path, value] : critical_entries(prm))
       {

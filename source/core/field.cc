@@ -7,7 +7,6 @@ namespace viscofilm
     : cell_mapping(mapping)
     , dofs(triangulation)
     , carried{&current_solution}
-    , carriers(1)
   {}
 
 
@@ -40,7 +39,6 @@ namespace viscofilm
   Field<dim, VectorType>::carry(VectorType &ghosted)
   {
     carried.push_back(&ghosted);
-    carriers.emplace_back();
   }
 
 
@@ -67,8 +65,7 @@ namespace viscofilm
   void
   Field<dim, VectorType>::prepare_for_refinement()
   {
-    for (unsigned int i = 0; i < carried.size(); ++i)
-      carriers[i].prepare(dofs, *carried[i]);
+    carrier.prepare(dofs, std::vector<const VectorType *>(carried.begin(), carried.end()));
   }
 
 
@@ -77,15 +74,17 @@ namespace viscofilm
   Field<dim, VectorType>::finish_refinement()
   {
     this->setup_dofs();
-    const MPI_Comm comm = dofs.get_communicator();
+    const MPI_Comm          comm = dofs.get_communicator();
+    std::vector<VectorType> distributed(carried.size(), VectorType(owned_partitioning, comm));
+    std::vector<VectorType *> targets;
+    for (VectorType &vector : distributed)
+      targets.push_back(&vector);
+    carrier.finish(dofs, targets);
+    transferred(distributed[0]);
     for (unsigned int i = 0; i < carried.size(); ++i)
       {
-        VectorType distributed(owned_partitioning, comm);
-        carriers[i].finish(dofs, distributed);
-        if (i == 0)
-          transferred(distributed);
         carried[i]->reinit(owned_partitioning, relevant_partitioning, comm);
-        *carried[i] = distributed;
+        *carried[i] = distributed[i];
       }
     old_solution = current_solution;
   }
@@ -95,8 +94,8 @@ namespace viscofilm
   void
   Field<dim, VectorType>::prepare_for_checkpoint()
   {
-    for (unsigned int i = 0; i < carried.size(); ++i)
-      carriers[i].prepare_checkpoint(dofs, *carried[i]);
+    carrier.prepare_checkpoint(dofs,
+                               std::vector<const VectorType *>(carried.begin(), carried.end()));
   }
 
 
@@ -104,8 +103,7 @@ namespace viscofilm
   void
   Field<dim, VectorType>::checkpoint_written()
   {
-    for (SolutionCarrier<dim, VectorType> &carrier : carriers)
-      carrier.release();
+    carrier.release();
   }
 
 

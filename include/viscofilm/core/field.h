@@ -135,10 +135,10 @@ namespace viscofilm
     VectorType                old_solution;     // ghosted, t_n
 
   private:
-    /// The vectors carried through a mesh change, the solution first, and
-    /// their carriers, in that order (a checkpoint's order of attachment).
-    std::vector<VectorType *>                      carried;
-    std::vector<SolutionCarrier<dim, VectorType>>  carriers;
+    /// The vectors carried through a mesh change, the solution first (a
+    /// checkpoint stores them in this order), and their carrier.
+    std::vector<VectorType *>         carried;
+    SolutionCarrier<dim, VectorType> carrier;
   };
 } // namespace viscofilm
 

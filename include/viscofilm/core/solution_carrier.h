@@ -1,4 +1,4 @@
-// How one solution vector survives a mesh change or a checkpoint.
+// How a field's vectors survive a mesh change or a checkpoint.
 #ifndef viscofilm_solution_carrier_h
 #define viscofilm_solution_carrier_h
 
@@ -10,26 +10,27 @@
 #include <deal.II/lac/affine_constraints.h>
 
 #include <memory>
+#include <vector>
 
 namespace viscofilm
 {
   using namespace dealii;
 
   /**
-   * Carries one solution vector of a DoFHandler across a mesh change:
-   * prepare() before the triangulation's execute_coarsening_and_refinement(),
-   * finish() after the DoFHandler was distributed anew; finish() applies the
-   * new hanging-node constraints. Likewise through a checkpoint:
-   * prepare_checkpoint() before the triangulation's save(), release() after
-   * it, and finish() (with nothing prepared) after load() and a new
-   * distribution of the dofs.
+   * Carries the solution vectors of a DoFHandler across a mesh change, with
+   * one SolutionTransfer for all of them: prepare() before the
+   * triangulation's execute_coarsening_and_refinement(), finish() after the
+   * DoFHandler was distributed anew; finish() applies the new hanging-node
+   * constraints. Likewise through a checkpoint: prepare_checkpoint() before
+   * the triangulation's save(), release() after it, and finish() (with
+   * nothing prepared) after load() and a new distribution of the dofs.
    */
   template <int dim, typename VectorType>
   class SolutionCarrier
   {
   public:
     void
-    prepare(const DoFHandler<dim> &dofs, const VectorType &ghosted)
+    prepare(const DoFHandler<dim> &dofs, const std::vector<const VectorType *> &ghosted)
     {
       transfer =
         std::make_unique<parallel::distributed::SolutionTransfer<dim, VectorType>>(dofs);
@@ -37,7 +38,8 @@ namespace viscofilm
     }
 
     void
-    prepare_checkpoint(const DoFHandler<dim> &dofs, const VectorType &ghosted)
+    prepare_checkpoint(const DoFHandler<dim> &                  dofs,
+                       const std::vector<const VectorType *> &ghosted)
     {
       transfer =
         std::make_unique<parallel::distributed::SolutionTransfer<dim, VectorType>>(dofs);
@@ -50,9 +52,10 @@ namespace viscofilm
       transfer.reset();
     }
 
-    /// @p distributed: a vector without ghosts laid out for the new dofs.
+    /// @p distributed: vectors without ghosts laid out for the new dofs, as
+    /// many as were prepared, in their order.
     void
-    finish(const DoFHandler<dim> &dofs, VectorType &distributed)
+    finish(const DoFHandler<dim> &dofs, std::vector<VectorType *> &distributed)
     {
       if (transfer)
         transfer->interpolate(distributed);
@@ -66,7 +69,8 @@ namespace viscofilm
       AffineConstraints<double> hanging(DoFTools::extract_locally_relevant_dofs(dofs));
       DoFTools::make_hanging_node_constraints(dofs, hanging);
       hanging.close();
-      hanging.distribute(distributed);
+      for (VectorType *vector : distributed)
+        hanging.distribute(*vector);
     }
 
   private:
