@@ -1,0 +1,26 @@
+# Bad command lines; a bad thread count before a valid parameter file: the
+# named message, exit status 2, no output directory.
+foreach(_case missing_file unknown_option no_arguments
+        threads_zero threads_negative threads_not_a_number threads_missing)
+  set(_prm "")
+  if(_case MATCHES "^threads")
+    set(_prm ${S}/poiseuille/poiseuille.prm)
+  endif()
+  if(_case STREQUAL missing_file)
+    set(_args "no-such-file.prm")
+  elseif(_case STREQUAL unknown_option)
+    set(_args "--frobnicate")
+  elseif(_case STREQUAL threads_zero)
+    set(_args "--threads 0")
+  elseif(_case STREQUAL threads_negative)
+    set(_args "--threads -2")
+  elseif(_case STREQUAL threads_not_a_number)
+    set(_args "--threads 2x")
+  elseif(_case STREQUAL threads_missing)
+    set(_args "--threads")
+  else()
+    set(_args "")
+  endif()
+  viscofilm_test(command_line_${_case} MODE error RANKS 1 ARGS "${_args}" PRM "${_prm}"
+    REFERENCE ${S}/command_line/${_case}.output)
+endforeach()
