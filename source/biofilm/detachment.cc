@@ -22,6 +22,7 @@ namespace viscofilm
   Detachment<dim>::Parameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Detachment");
+    Biofilm<dim>::declare_entries(prm);
     prm.declare_entry("Release",
                       "false",
                       Patterns::Bool(),
@@ -64,10 +65,11 @@ namespace viscofilm
 
   template <int dim>
   void
-  Detachment<dim>::Parameters::parse_parameters(ParameterHandler &         prm,
-                                           const typename BiofilmLoads<dim>::Parameters &loads)
+  Detachment<dim>::Parameters::parse_parameters(ParameterHandler &             prm,
+                                                const BoundaryConditions<dim> &boundary_conditions)
   {
     prm.enter_subsection("Detachment");
+    biofilm.parse_entries(prm, boundary_conditions);
     enabled   = prm.get_bool("Release");
     criterion = (prm.get("Criterion") == "interface traction" ?
                    Criterion::interface_traction :
@@ -75,7 +77,7 @@ namespace viscofilm
     duration  = prm.get_double("Duration");
     release_unattached = prm.get_bool("Release unattached");
     prm.leave_subsection();
-    check_input(!enabled || !release_unattached || !loads.walls.empty(),
+    check_input(!enabled || !release_unattached || !biofilm.walls.empty(),
                 "Detachment/Release unattached = true needs the walls the biofilm "
                 "is attached to in Detachment/Walls, which names no boundary of "
                 "this mesh (set Walls, or Release unattached = false)");
@@ -84,7 +86,6 @@ namespace viscofilm
 
   template <int dim>
   Detachment<dim>::Detachment(const Parameters &                             parameters,
-                         const typename BiofilmLoads<dim>::Parameters &               loads,
                          const Model &                                  model,
                          const parallel::distributed::Triangulation<dim> &triangulation,
                          const typename VolumeFraction<dim>::Parameters & transport,
@@ -93,7 +94,6 @@ namespace viscofilm
                          VolumeFraction<dim> &                          volume_fraction,
                          const ElasticStress<dim> &                     stress)
     : parameters(parameters)
-    , loads(loads)
     , model(model)
     , stokes(stokes)
     , volume_fraction(volume_fraction)
@@ -126,7 +126,7 @@ namespace viscofilm
     const DoFHandler<dim> &dofs  = volume_fraction.dof_handler();
     const IndexSet         owned = dofs.locally_owned_dofs();
     const MPI_Comm         comm  = dofs.get_communicator();
-    const double           level = loads.interface_level;
+    const double           level = parameters.biofilm.interface_level;
     const bool             traction =
       (parameters.criterion == Parameters::Criterion::interface_traction);
 
@@ -282,8 +282,8 @@ namespace viscofilm
     for (const types::global_dof_index i : owned)
       {
         const double previous = (parameters.duration > 0 ? clock(i) : 0.0);
-        clock_now(i) = (load(i) > loads.stress_threshold ? previous + time_step : 0);
-        if (load(i) > loads.stress_threshold &&
+        clock_now(i) = (load(i) > parameters.biofilm.stress_threshold ? previous + time_step : 0);
+        if (load(i) > parameters.biofilm.stress_threshold &&
             clock_now(i) >= parameters.duration * (1 - 1e-12))
           {
             phi(i)                              = 0;
@@ -321,7 +321,7 @@ namespace viscofilm
             nodes.push_back(relevant.index_within_set(dof));
           graph.cells.push_back(nodes);
           for (const unsigned int f : cell->face_indices())
-            if (cell->at_boundary(f) && loads.is_wall(cell->face(f)->boundary_id()))
+            if (cell->at_boundary(f) && parameters.biofilm.is_wall(cell->face(f)->boundary_id()))
               {
                 cell->face(f)->get_dof_indices(face_dofs);
                 for (const auto dof : face_dofs)
@@ -371,7 +371,7 @@ namespace viscofilm
     // wall.
     std::vector<bool> biofilm(n);
     for (unsigned int k = 0; k < n; ++k)
-      biofilm[k] = (ghosted_phi(relevant.nth_index_in_set(k)) >= loads.interface_level);
+      biofilm[k] = (ghosted_phi(relevant.nth_index_in_set(k)) >= parameters.biofilm.interface_level);
     std::vector<bool> attached(n, false);
     for (const unsigned int k : graph.wall_nodes)
       attached[k] = biofilm[k];

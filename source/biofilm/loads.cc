@@ -91,60 +91,12 @@ namespace viscofilm
   } // namespace
 
 
-  namespace
-  {
-    /// The boundaries named in the comma-separated list @p names, each
-    /// resolved with @p boundary_conditions (an unknown name names @p parameter).
-    template <int dim>
-    std::vector<typename BiofilmLoads<dim>::Parameters::NamedBoundary>
-    named_boundaries(const std::string &       names,
-                     const std::string &       parameter,
-                     const BoundaryConditions<dim> &boundary_conditions)
-    {
-      std::vector<typename BiofilmLoads<dim>::Parameters::NamedBoundary> boundaries;
-      for (const std::string &name : Utilities::split_string_list(names))
-        {
-          for (const auto &boundary : boundaries)
-            check_input(boundary.name != name,
-                        parameter + ": \"" + name + "\" is listed twice");
-          boundaries.push_back({name, boundary_conditions.id(name, parameter)});
-        }
-      return boundaries;
-    }
-  } // namespace
 
 
   template <int dim>
   void
   BiofilmLoads<dim>::Parameters::declare_parameters(ParameterHandler &prm)
   {
-    prm.enter_subsection("Detachment");
-    prm.declare_entry("Stress threshold",
-                      "1",
-                      Patterns::Double(0),
-                      "von Mises stress of the total stress above which the "
-                      "biofilm counts as prone to detach (statistics.csv: "
-                      "detachment_area), in the run's stress unit: ηs U0/L0 "
-                      "(≈ 0.0167 Pa with Table 4.1), Pa with Units = SI. With "
-                      "Release = true also the biofilm's strength: the load of "
-                      "Criterion above it releases the biofilm.");
-    prm.declare_entry("Interface volume fraction",
-                      "0.05",
-                      Patterns::Double(0, 1),
-                      "φ of the biofilm outline: the biofilm is φ >= this, its "
-                      "interface the contour φ = this. In (0, 1).");
-    prm.declare_entry("Walls",
-                      "Bottom",
-                      Patterns::List(Patterns::Anything()),
-                      "The boundaries (names of Boundary conditions, "
-                      "comma-separated) on which statistics.csv's "
-                      "wall_shear_stress_mean/max are taken: the tangential "
-                      "traction the fluid exerts on them (doc/loads.md). "
-                      "Empty: none (the columns are 0). The default, Bottom "
-                      "(the thesis' wall), means none on a mesh without a "
-                      "boundary of that name.");
-    prm.leave_subsection();
-
     prm.enter_subsection("Forces");
     prm.declare_entry("Boundaries",
                       "",
@@ -175,22 +127,6 @@ namespace viscofilm
     ParameterHandler &        prm,
     const BoundaryConditions<dim> &boundary_conditions)
   {
-    prm.enter_subsection("Detachment");
-    stress_threshold = prm.get_double("Stress threshold");
-    interface_level  = prm.get_double("Interface volume fraction");
-    const bool has_bottom =
-      std::any_of(boundary_conditions.boundaries.begin(),
-                  boundary_conditions.boundaries.end(),
-                  [](const typename BoundaryConditions<dim>::Boundary &b) { return b.name == "Bottom"; });
-    const std::string wall_names = prm.get("Walls");
-    walls = (wall_names == "Bottom" && !has_bottom) ?
-              std::vector<NamedBoundary>() :
-              named_boundaries(wall_names, "Detachment/Walls", boundary_conditions);
-    prm.leave_subsection();
-    check_input(interface_level > 0 && interface_level < 1,
-                "Detachment/Interface volume fraction must be in (0, 1), got " +
-                  to_text(interface_level));
-
     prm.enter_subsection("Forces");
     force_boundaries =
       named_boundaries(prm.get("Boundaries"), "Forces/Boundaries", boundary_conditions);
@@ -203,11 +139,13 @@ namespace viscofilm
 
   template <int dim>
   BiofilmLoads<dim>::BiofilmLoads(const Parameters &    parameters,
+                             const Biofilm<dim> &  biofilm,
                              const Model &         model,
                              const StokesFlow<dim> & stokes,
                              const VolumeFraction<dim> &volume_fraction,
                              const ElasticStress<dim> & stress)
     : parameters(parameters)
+    , biofilm(biofilm)
     , model(model)
     , stokes(stokes)
     , volume_fraction(volume_fraction)
@@ -226,7 +164,7 @@ namespace viscofilm
     TotalStress<FEValues<dim>>     cell_stress(quadrature, model, stokes, volume_fraction, stress);
     TotalStress<FEFaceValues<dim>> wall_stress(
       face_quadrature, model, stokes, volume_fraction, stress, update_normal_vectors);
-    const double level = parameters.interface_level;
+    const double level = biofilm.interface_level;
 
     // sums: walls ∫ shear, walls length, interface ∫|σn|, interface measure,
     // detachment area; maxima: |shear| on the walls, |σn|, σ_vm
@@ -236,7 +174,7 @@ namespace viscofilm
       if (cell->is_locally_owned())
         {
           for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary() && parameters.is_wall(cell->face(f)->boundary_id()))
+            if (cell->face(f)->at_boundary() && biofilm.is_wall(cell->face(f)->boundary_id()))
               {
                 wall_stress.reinit(cell, f);
                 const auto &normals = wall_stress.stokes_fe_values().get_normal_vectors();
@@ -272,7 +210,7 @@ namespace viscofilm
                 {
                   const double equivalent = von_mises(sigma);
                   maxima[2] = std::max(maxima[2], equivalent);
-                  if (equivalent > parameters.stress_threshold)
+                  if (equivalent > biofilm.stress_threshold)
                     sums[4] += cell_stress.JxW(q);
                 }
             }
@@ -317,7 +255,7 @@ namespace viscofilm
   std::vector<Tensor<1, dim>>
   BiofilmLoads<dim>::surface_integral_forces() const
   {
-    const std::vector<typename Parameters::NamedBoundary> &boundaries =
+    const std::vector<NamedBoundaryId> &boundaries =
       parameters.force_boundaries;
     std::vector<Tensor<1, dim>> forces(boundaries.size());
     const DoFHandler<dim> &dofs = stokes.dof_handler();
@@ -347,7 +285,7 @@ namespace viscofilm
   std::vector<Tensor<1, dim>>
   BiofilmLoads<dim>::consistent_forces() const
   {
-    const std::vector<typename Parameters::NamedBoundary> &boundaries =
+    const std::vector<NamedBoundaryId> &boundaries =
       parameters.force_boundaries;
     std::vector<Tensor<1, dim>> forces(boundaries.size());
     const DoFHandler<dim> &dofs = stokes.dof_handler();

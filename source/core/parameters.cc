@@ -56,7 +56,7 @@ namespace viscofilm
     departure_feet.parse_parameters(prm);
     volume_fraction.parse_parameters(prm);
     loads.parse_parameters(prm, boundary_conditions);
-    detachment.parse_parameters(prm, loads);
+    detachment.parse_parameters(prm, boundary_conditions);
     output.parse_parameters(prm);
     verification.parse_parameters(prm);
     checkpointing.parse_parameters(prm);

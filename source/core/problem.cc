@@ -76,12 +76,12 @@ namespace viscofilm
              volume_fraction)
     , departure_feet(parameters.departure_feet, triangulation, mapping)
     , loads(parameters.loads,
+            parameters.detachment.biofilm,
             parameters.model,
             stokes,
             volume_fraction,
             stress)
     , detachment(parameters.detachment,
-                 parameters.loads,
                  parameters.model,
                  triangulation,
                  parameters.volume_fraction,

@@ -44,10 +44,12 @@ namespace viscofilm
 
       static void
       declare_parameters(ParameterHandler &prm);
-      /// Release unattached needs @p loads' Walls.
+      /// Walls' names are resolved with @p boundary_conditions.
       void
-      parse_parameters(ParameterHandler &prm, const typename BiofilmLoads<dim>::Parameters &loads);
+      parse_parameters(ParameterHandler &prm, const BoundaryConditions<dim> &boundary_conditions);
 
+      /// The outline, the strength and the walls, which the loads read too.
+      Biofilm<dim> biofilm;
       bool      enabled   = false;
       Criterion criterion = Criterion::von_mises;
       /// How long the load must exceed the strength before release.
@@ -63,12 +65,9 @@ namespace viscofilm
       double outflow  = 0; // φ_d carried out through the boundary since t = 0
     };
 
-    /// The strength, the biofilm's outline and the walls it must be
-    /// connected to are @p loads' Stress threshold, Interface volume
-    /// fraction and Walls. φ_d lives on @p triangulation with φ's element
-    /// and transport scheme (@p transport).
+    /// φ_d lives on @p triangulation with φ's element and transport scheme
+    /// (@p transport).
     Detachment(const Parameters &                             parameters,
-               const typename BiofilmLoads<dim>::Parameters & loads,
                const Model &                                  model,
                const parallel::distributed::Triangulation<dim> &triangulation,
                const typename VolumeFraction<dim>::Parameters & transport,
@@ -173,7 +172,6 @@ namespace viscofilm
            const std::vector<Point<dim>> &      released_nodes);
 
     const Parameters &              parameters;
-    const typename BiofilmLoads<dim>::Parameters &loads;
     const Model &                   model;
     const StokesFlow<dim> &       stokes;
     VolumeFraction<dim> &           volume_fraction;

@@ -12,6 +12,7 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
+#include <viscofilm/biofilm/biofilm.h>
 #include <viscofilm/core/dimension.h>
 #include <viscofilm/core/reporter.h>
 #include <viscofilm/material/model.h>
@@ -48,13 +49,6 @@ namespace viscofilm
         surface_integral // −∫_Γ σ n ds with the face values of the fields
       };
 
-      /// A named boundary and its id.
-      struct NamedBoundary
-      {
-        std::string        name;
-        types::boundary_id id;
-      };
-
       static void
       declare_parameters(ParameterHandler &prm);
       /// Boundary names are resolved with @p boundary_conditions.
@@ -62,27 +56,14 @@ namespace viscofilm
       parse_parameters(ParameterHandler &        prm,
                        const BoundaryConditions<dim> &boundary_conditions);
 
-      /// σ_vm above which the biofilm counts as prone to detach; the
-      /// strength of the release (Detachment).
-      double stress_threshold = 1.0;
-      /// The biofilm is φ >= this; its interface the contour φ = this.
-      double interface_level = 0.05;
-      /// The walls of the wall shear stress.
-      std::vector<NamedBoundary> walls;
-      /// Whether boundary @p id is one of walls.
-      bool
-      is_wall(const types::boundary_id id) const
-      {
-        return std::any_of(walls.begin(), walls.end(), [id](const NamedBoundary &wall) {
-          return wall.id == id;
-        });
-      }
       /// The boundaries whose force goes into statistics.csv.
-      std::vector<NamedBoundary> force_boundaries;
+      std::vector<NamedBoundaryId> force_boundaries;
       ForceMethod                force_method = ForceMethod::consistent;
     };
 
+    /// @p biofilm: the outline, the strength and the walls (Detachment).
     BiofilmLoads(const Parameters &    parameters,
+                 const Biofilm<dim> &  biofilm,
                  const Model &         model,
                  const StokesFlow<dim> & stokes,
                  const VolumeFraction<dim> &volume_fraction,
@@ -110,6 +91,7 @@ namespace viscofilm
     consistent_forces() const;
 
     const Parameters &    parameters;
+    const Biofilm<dim> &  biofilm;
     const Model &         model;
     const StokesFlow<dim> & stokes;
     const VolumeFraction<dim> &volume_fraction;

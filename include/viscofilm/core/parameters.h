@@ -51,8 +51,8 @@ namespace viscofilm
     typename ElasticStress<dim>::Parameters  stress;
     typename DepartureFeet<dim>::Parameters  departure_feet;
     typename VolumeFraction<dim>::Parameters volume_fraction; // Stabilization
-    typename BiofilmLoads<dim>::Parameters   loads;  // Detachment (threshold, walls), Forces
-    typename Detachment<dim>::Parameters     detachment; // Detachment (the release)
+    typename BiofilmLoads<dim>::Parameters   loads; // Forces
+    typename Detachment<dim>::Parameters     detachment;
     typename Output<dim>::Parameters output;
     Verification<dim>        verification;
     typename Checkpoint<dim>::Parameters checkpointing;
