@@ -161,9 +161,7 @@ namespace viscofilm
           << volume_fraction.dof_handler().n_dofs() << " volume fraction dofs, "
           << Utilities::MPI::n_mpi_processes(mpi_communicator) << " MPI rank(s) × "
           << MultithreadInfo::n_threads() << " thread(s)";
-    if (const std::string preconditioner = stokes.velocity_preconditioner(); !preconditioner.empty())
-      pcout << "; velocity preconditioner " << preconditioner;
-    pcout << std::endl;
+    pcout << "; Stokes solver " << stokes.solver_description() << std::endl;
   }
 
 
@@ -184,14 +182,14 @@ namespace viscofilm
       field->prepare_for_refinement();
     triangulation.execute_coarsening_and_refinement();
     cache_mapping();
-    const std::string preconditioner = stokes.velocity_preconditioner();
+    const std::string solver = stokes.solver_description();
     for (FieldBase<dim> *field : fields)
       field->finish_refinement();
     mesh_changed();
-    // Velocity preconditioner = auto chooses anew on each mesh: say when
-    // an adapted mesh crossed its threshold.
-    if (stokes.velocity_preconditioner() != preconditioner)
-      pcout << "Velocity preconditioner " << stokes.velocity_preconditioner() << " from here on ("
+    // Method = auto and Velocity preconditioner = auto choose anew on each
+    // mesh: say when an adapted mesh crossed a threshold.
+    if (stokes.solver_description() != solver)
+      pcout << "Stokes solver " << stokes.solver_description() << " from here on ("
             << triangulation.n_global_active_cells() << " cells, " << stokes.n_dofs()
             << " Stokes dofs)" << std::endl;
     return true;

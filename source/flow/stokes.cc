@@ -43,8 +43,14 @@ namespace viscofilm
   {
     prm.enter_subsection("Stokes solver");
     prm.declare_entry("Method",
-                      "block preconditioned",
-                      Patterns::Selection("block preconditioned|direct|thesis"),
+                      "auto",
+                      Patterns::Selection("auto|block preconditioned|direct|thesis"),
+                      "auto: direct where the block preconditioner's "
+                      "iterations grow past 100, a viscosity ratio "
+                      "max/min of Model's η(φ) of 1e4 and more, on meshes "
+                      "the factorisation fits (Stokes dofs up to 6e5 in 2D, "
+                      "3e4 in 3D, decided at every mesh change), else block "
+                      "preconditioned; the run prints the choice. "
                       "block preconditioned: FGMRES with AMG or GMG on the "
                       "velocity block (Preconditioner/Velocity preconditioner) "
                       "and, for the Schur complement, the 1/η-weighted "
@@ -276,13 +282,15 @@ namespace viscofilm
   {
     prm.enter_subsection("Stokes solver");
     const std::string name = prm.get("Method");
-    method = (name == "direct" ? Method::direct :
+    method = (name == "auto"   ? Method::automatic :
+              name == "direct" ? Method::direct :
               name == "thesis" ? Method::thesis :
                                  Method::block_preconditioned);
     convection = (prm.get("Momentum convection") == "Eulerian" ? Convection::eulerian :
                                                                   Convection::semi_lagrangian);
     direct_solver = "Amesos_" + std::string(prm.get("Direct solver") == "KLU" ? "Klu" : "Mumps");
-    check_input(method != Method::direct || Amesos().Query(direct_solver),
+    check_input((method != Method::direct && method != Method::automatic) ||
+                  Amesos().Query(direct_solver),
                 "Stokes solver/Direct solver = " + prm.get("Direct solver") +
                   ": this build's Trilinos has no " + direct_solver +
                   "; choose KLU (always built) or Method = block preconditioned");
@@ -351,7 +359,6 @@ namespace viscofilm
     , mpi_communicator(triangulation.get_communicator())
     , fe(FE_Q<dim>(2), dim, *pressure_element<dim>(parameters.pressure_element), 1)
     , order(order)
-    , linear_solver(StokesLinearSolver<dim>::create(parameters, model, boundary_conditions))
   {
     if (order == 2)
       this->carry(older_solution);
@@ -382,6 +389,11 @@ namespace viscofilm
                         {locally_relevant_dofs.get_view(0, n_u),
                          locally_relevant_dofs.get_view(n_u, n_u + n_p)});
 
+    if (const Method method = choose_method(); !linear_solver || method != method_in_use)
+      {
+        linear_solver = StokesLinearSolver<dim>::create(method, parameters, model, boundary_conditions);
+        method_in_use = method;
+      }
     // The constrained dofs do not change in time, only their values do.
     make_constraints(0.0);
     linear_solver->reinit(dofs, constraints, owned_partitioning, relevant_partitioning);
@@ -389,6 +401,40 @@ namespace viscofilm
     system_rhs.reinit(owned_partitioning, mpi_communicator);
     older_solution.reinit(owned_partitioning, relevant_partitioning, mpi_communicator);
     invalidate_matrix();
+  }
+
+
+  template <int dim>
+  typename StokesFlow<dim>::Method
+  StokesFlow<dim>::choose_method() const
+  {
+    if (parameters.method != Method::automatic)
+      return parameters.method;
+    // Measured (doc/performance.md, "Real scales"): at a ratio of 1e4 the
+    // block preconditioner takes 109-158 iterations, at 1e6 it fails; MUMPS
+    // takes 2.2 GB a rank at 6e5 dofs in 2D, 2 GB at 1.1e5 in 3D (233 s).
+    const types::global_dof_index largest = (dim == 2 ? 600000 : 30000);
+    return (model.viscosity_ratio() >= 1e4 && dofs.n_dofs() <= largest) ?
+             Method::direct :
+             Method::block_preconditioned;
+  }
+
+
+  template <int dim>
+  std::string
+  StokesFlow<dim>::solver_description() const
+  {
+    switch (method_in_use)
+      {
+        case Method::direct:
+          return std::string("direct (") +
+                 (parameters.direct_solver == "Amesos_Klu" ? "KLU" : "MUMPS") + ")";
+        case Method::thesis:
+          return "thesis (GMRES + ILU)";
+        default:
+          return "block preconditioned, velocity preconditioner " +
+                 linear_solver->velocity_preconditioner();
+      }
   }
 
 
@@ -574,14 +620,6 @@ namespace viscofilm
   StokesFlow<dim>::n_preconditioner_builds() const
   {
     return linear_solver->n_preconditioner_builds();
-  }
-
-
-  template <int dim>
-  std::string
-  StokesFlow<dim>::velocity_preconditioner() const
-  {
-    return linear_solver->velocity_preconditioner();
   }
 
 

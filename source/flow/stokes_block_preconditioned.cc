@@ -32,6 +32,12 @@ namespace viscofilm
 {
   namespace
   {
+    /// What a user can do when the iterations do not converge.
+    const std::string direct_hint =
+      "; at viscosity ratios of 1e4 and more the block preconditioner's "
+      "iterations grow, and Stokes solver/Method = direct (or auto, which "
+      "picks it there) is robust (doc/numerics-stokes.md)";
+
     /// cg.solve(…), or a message naming the inner solve @p what and its
     /// iteration limit @p parameter if it does not converge (not FGMRES's
     /// NoConvergence, which the outer loop answers with expensive iterations).
@@ -48,7 +54,8 @@ namespace viscofilm
           throw ExcMessage("the Stokes preconditioner's " + what + " did not converge in " +
                            std::to_string(e.last_step) + " iterations: residual " +
                            Utilities::to_string(e.last_residual) +
-                           " (Stokes solver/Preconditioner/" + parameter + ")");
+                           " (Stokes solver/Preconditioner/" + parameter + ")" +
+                           direct_hint);
         }
     }
 
@@ -941,7 +948,8 @@ namespace viscofilm
                                    Utilities::to_string(e.last_residual) + ", target " +
                                    Utilities::to_string(control.tolerance()) +
                                    " (Stokes solver/Maximum iterations = " +
-                                   std::to_string(parameters.max_iterations) + ")");
+                                   std::to_string(parameters.max_iterations) + ")" +
+                                   direct_hint);
                 if (!go_on)
                   return false;
               }

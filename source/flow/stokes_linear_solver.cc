@@ -4,11 +4,12 @@ namespace viscofilm
 {
   template <int dim>
   std::unique_ptr<StokesLinearSolver<dim>>
-  StokesLinearSolver<dim>::create(const typename StokesFlow<dim>::Parameters &parameters,
+  StokesLinearSolver<dim>::create(const typename StokesFlow<dim>::Method      method,
+                                  const typename StokesFlow<dim>::Parameters &parameters,
                                   const Model &                                 model,
                                   const BoundaryConditions<dim> &               boundary_conditions)
   {
-    switch (parameters.method)
+    switch (method)
       {
         case StokesFlow<dim>::Method::direct:
           return make_direct_solver<dim>(parameters);

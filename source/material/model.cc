@@ -2,6 +2,7 @@
 #include <viscofilm/material/model.h>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <utility>
 
@@ -339,6 +340,15 @@ namespace viscofilm
     return rheology == Rheology::thesis_mixture ?
              mix(water.solvent_viscosity, biofilm.polymer_viscosity, volume_fraction) :
              mix(water.solvent_viscosity, biofilm.solvent_viscosity, volume_fraction);
+  }
+
+
+  double
+  Model::viscosity_ratio() const
+  {
+    const double water = viscosity(0.0), biofilm = viscosity(1.0);
+    const double low = std::min(water, biofilm), high = std::max(water, biofilm);
+    return low > 0 ? high / low : std::numeric_limits<double>::infinity();
   }
 
 

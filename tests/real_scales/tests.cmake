@@ -91,3 +91,26 @@ viscofilm_test(dfg_2d1_eulerian MODE run RANKS 2
   COMPARE statistics.csv:step,max_velocity,force_x_Cylinder
   BOUND "statistics.csv[step>27]:force_x_Cylinder>0.0110475"
         "statistics.csv[step>27]:force_x_Cylinder<0.0112706")
+
+# prm/examples/channel-biofilm-si.prm (water and a measured biofilm rheology
+# in SI: a viscosity ratio of 1.08e6) with the default Stokes solver/Method
+# (auto), 6 steps: auto picks the direct solver (no Krylov iterations,
+# bound), and the run goes on where the block preconditioner stops at step 1
+# (its velocity CG does not converge; the default before auto). Regression
+# check of the answer; `bulb_short_direct_mumps` checks MUMPS against the
+# iterative solve.
+file(READ ${CMAKE_SOURCE_DIR}/prm/examples/channel-biofilm-si.prm _prm)
+string(REGEX REPLACE "set Number of steps *= *[0-9]+" "set Number of steps = 6" _prm "${_prm}")
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/channel_biofilm_si_auto.prm "${_prm}
+subsection Output
+  set Interval = 0
+end
+")
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
+  ${CMAKE_SOURCE_DIR}/prm/examples/channel-biofilm-si.prm)
+viscofilm_test(channel_biofilm_si_auto MODE run RANKS 2
+  PRM ${CMAKE_CURRENT_BINARY_DIR}/channel_biofilm_si_auto.prm
+  REFERENCE ${S}/real_scales/channel_biofilm_si_auto.output
+  BOUND "statistics.csv:max(stokes_iterations)<0.5" "statistics.csv:max(step)>5.5"
+  NUMDIFF "-a 1e-12 -r 1e-6"
+  COMPARE statistics.csv:step,time,stokes_iterations,max_velocity,volume_fraction_integral)

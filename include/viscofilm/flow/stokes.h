@@ -48,6 +48,7 @@ namespace viscofilm
   public:
     enum class Method
     {
+      automatic,            // direct where it is needed and affordable, else block
       block_preconditioned, // FGMRES + block triangular preconditioner
       direct,               // a sparse LU of the whole system (Direct solver)
       thesis                // the thesis' way: GMRES + ILU on the whole system
@@ -102,7 +103,7 @@ namespace viscofilm
       void
       parse_parameters(ParameterHandler &prm);
 
-      Method          method         = Method::block_preconditioned;
+      Method          method         = Method::automatic;
       Convection      convection     = Convection::semi_lagrangian;
       /// The Amesos package of Method = direct.
       std::string     direct_solver  = "Amesos_Mumps";
@@ -286,10 +287,10 @@ namespace viscofilm
     unsigned int
     n_preconditioner_builds() const;
 
-    /// The velocity block's preconditioner on this mesh ("AMG" or "GMG";
-    /// empty for the solvers without one).
+    /// The linear solver on this mesh, for the run's log: "direct (MUMPS)",
+    /// "block preconditioned, velocity preconditioner AMG", ...
     std::string
-    velocity_preconditioner() const;
+    solver_description() const;
 
     /// The rebuild criterion's measure at the last matrix assembly: the
     /// volume mean of |ln(η/η_built)| against the AMG in use until then (0
@@ -316,6 +317,9 @@ namespace viscofilm
 
     void
     make_constraints(const double time);
+    /// Stokes solver/Method, or for auto what it picks on this mesh.
+    Method
+    choose_method() const;
     /// Whether Res Du/Dt is BDF2 in the current step (u^{n-1} at hand).
     bool
     inertia_bdf2() const;
@@ -356,7 +360,8 @@ namespace viscofilm
     bool matrix_is_current = false;
 
     /// The matrices, preconditioners and solver (Method).
-    std::unique_ptr<StokesLinearSolver<dim>> linear_solver;
+    std::unique_ptr<StokesLinearSolver<dim>> linear_solver; // from setup_dofs()
+    Method                                   method_in_use = Method::automatic;
   };
 } // namespace viscofilm
 

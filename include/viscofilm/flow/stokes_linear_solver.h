@@ -56,8 +56,10 @@ namespace viscofilm
   class StokesLinearSolver
   {
   public:
+    /// The strategy of @p method (not automatic: StokesFlow decides).
     static std::unique_ptr<StokesLinearSolver<dim>>
-    create(const typename StokesFlow<dim>::Parameters &parameters,
+    create(const typename StokesFlow<dim>::Method      method,
+           const typename StokesFlow<dim>::Parameters &parameters,
            const Model &                                 model,
            const BoundaryConditions<dim> &               boundary_conditions);
 

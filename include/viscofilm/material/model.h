@@ -81,6 +81,11 @@ namespace viscofilm
     double
     viscosity(const double volume_fraction) const;
 
+    /// The largest over the smallest of viscosity(φ), φ in [0, 1] (it is
+    /// monotone in φ); infinite if one is 0.
+    double
+    viscosity_ratio() const;
+
     /// c of the relaxed state (τ = 0), the same everywhere: ηp/(a λ) for the
     /// thesis mixture (eq. 2.39), 1 for phases.
     double
