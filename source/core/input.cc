@@ -134,8 +134,7 @@ namespace viscofilm
                           const std::string &parameter)
   {
     expression = text;
-    const std::vector<std::string> components =
-      Utilities::split_string_list(text, ';');
+    components = Utilities::split_string_list(text, ';');
     check_input(components.size() == n_components,
                 parameter + " must have " + std::to_string(n_components) +
                   " component(s) separated by ';'" +
@@ -143,7 +142,7 @@ namespace viscofilm
                   ", got " +
                   std::to_string(components.size()) + ": \"" + text + "\"");
 
-    std::map<std::string, double> constants{{"pi", numbers::PI}};
+    constants = {{"pi", numbers::PI}};
     const std::string constants_parameter =
       parameter.substr(0, parameter.rfind('/') + 1) + "Function constants";
     for (const std::string &item : Utilities::split_string_list(constants_text, ','))
@@ -173,22 +172,19 @@ namespace viscofilm
     std::streambuf *const cerr_buffer = std::cerr.rdbuf(muparser_diagnosis.rdbuf());
     try
       {
-        parser = std::make_unique<FunctionParser<dim>>(n_components);
-        parser->initialize(FunctionParser<dim>::default_variable_names() + ",t",
-                           components,
-                           constants,
-                           /*time dependent*/ true);
+        parsers.clear();
         // muparser compiles lazily: evaluate once so errors surface here.
         Point<dim> inside;
         for (unsigned int d = 0; d < dim; ++d)
           inside[d] = 0.5;
         Vector<double> values(n_components);
-        parser->vector_value(inside, values);
+        thread_parser().vector_value(inside, values);
         std::cerr.rdbuf(cerr_buffer);
       }
     catch (const std::exception &e)
       {
         std::cerr.rdbuf(cerr_buffer);
+        parsers.clear();
         check_input(false,
                     parameter + " = \"" + text +
                       "\" is not a valid expression in " +
@@ -204,10 +200,9 @@ namespace viscofilm
                                const double       time,
                                const unsigned int component) const
   {
-    Assert(parser, ExcInternalError());
-    std::lock_guard<std::mutex> lock(time_lock);
-    parser->set_time(time);
-    return parser->value(point, component);
+    FunctionParser<dim> &parser = thread_parser();
+    parser.set_time(time);
+    return parser.value(point, component);
   }
 
 
@@ -217,10 +212,27 @@ namespace viscofilm
                                       const double      time,
                                       Vector<double> &  values) const
   {
-    Assert(parser, ExcInternalError());
-    std::lock_guard<std::mutex> lock(time_lock);
-    parser->set_time(time);
-    parser->vector_value(point, values);
+    FunctionParser<dim> &parser = thread_parser();
+    parser.set_time(time);
+    parser.vector_value(point, values);
+  }
+
+
+  template <int dim>
+  FunctionParser<dim> &
+  ParsedExpression<dim>::thread_parser() const
+  {
+    Assert(!components.empty(), ExcInternalError());
+    std::shared_ptr<FunctionParser<dim>> &parser = parsers.get();
+    if (!parser)
+      {
+        parser = std::make_shared<FunctionParser<dim>>(n_components);
+        parser->initialize(FunctionParser<dim>::default_variable_names() + ",t",
+                           components,
+                           constants,
+                           /*time dependent*/ true);
+      }
+    return *parser;
   }
 
 

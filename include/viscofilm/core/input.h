@@ -7,12 +7,13 @@
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
-#include <deal.II/base/thread_management.h>
+#include <deal.II/base/thread_local_storage.h>
 
 #include <deal.II/lac/vector.h>
 
 #include <viscofilm/core/dimension.h>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -99,13 +100,18 @@ namespace viscofilm
     text() const;
 
   private:
-    const unsigned int                 n_components;
-    std::string                        expression;
-    /// Its time is the evaluation's, set by value() and vector_value()
-    /// under @p time_lock: threads of one assembly (WorkStream) evaluate the
-    /// same expression, and deal.II's parser keeps one time for all.
-    std::unique_ptr<FunctionParser<dim>> parser;
-    mutable Threads::Mutex               time_lock;
+    /// This thread's parser of the expression, made at its first use:
+    /// value() and vector_value() set the parser's time (deal.II's parser
+    /// keeps one), and the threads of one assembly (WorkStream) evaluate the
+    /// same expression, each with a parser of its own and without a lock.
+    FunctionParser<dim> &
+    thread_parser() const;
+
+    const unsigned int            n_components;
+    std::string                   expression;
+    std::vector<std::string>      components;
+    std::map<std::string, double> constants;
+    mutable Threads::ThreadLocalStorage<std::shared_ptr<FunctionParser<dim>>> parsers;
   };
 
 
