@@ -3,6 +3,7 @@
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
 
 #include <viscofilm/geometry/geometry.h>
@@ -358,16 +359,8 @@ namespace viscofilm
       }
 
     if (mesh == Mesh::gmsh)
-      {
-        lower_left  = coarse.get_vertices()[0];
-        upper_right = lower_left;
-        for (const Point<dim> &v : coarse.get_vertices())
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              lower_left[d]  = std::min(lower_left[d], v[d]);
-              upper_right[d] = std::max(upper_right[d], v[d]);
-            }
-      }
+      std::tie(lower_left, upper_right) =
+        GridTools::compute_bounding_box(coarse).get_boundary_points();
   }
 
 
