@@ -9,7 +9,7 @@ namespace viscofilm
                                  const std::vector<typename Geometry<dim>::NamedBoundary> &boundaries)
   {
     Geometry<dim>::declare_parameters(prm);
-    MeshRefinement<dim>::declare_parameters(prm);
+    MeshRefinement<dim>::Parameters::declare_parameters(prm);
     TimeStepping::declare_parameters(prm);
     Model::declare_parameters(prm);
     BoundaryConditions<dim>::declare_parameters(prm, boundaries);

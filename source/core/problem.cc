@@ -75,6 +75,7 @@ namespace viscofilm
              stokes.quadrature(),
              volume_fraction)
     , departure_feet(parameters.departure_feet, triangulation, mapping)
+    , mesh_refinement(parameters.mesh_refinement)
     , loads(parameters.loads,
             parameters.detachment.biofilm,
             parameters.model,
@@ -170,7 +171,7 @@ namespace viscofilm
   Problem<dim>::refine_mesh(const bool coarsen, const typename MeshRefinement<dim>::InitialInput *input)
   {
     TimerOutput::Scope t(*computing_timer, "refine mesh");
-    if (!parameters.mesh_refinement.flag_cells(triangulation,
+    if (!mesh_refinement.flag_cells(triangulation,
                                                volume_fraction,
                                                detachment.detached_fraction(),
                                                stokes,

@@ -45,11 +45,12 @@ namespace viscofilm
     prm.declare_entry("Method",
                       "auto",
                       Patterns::Selection("auto|block preconditioned|direct|thesis"),
-                      "auto: direct where the block preconditioner's "
-                      "iterations grow past 100, a viscosity ratio "
-                      "max/min of Model's η(φ) of 1e4 and more, on meshes "
-                      "the factorisation fits (Stokes dofs up to 6e5 in 2D, "
-                      "3e4 in 3D, decided at every mesh change), else block "
+                      "auto: direct where the viscosity ratio max/min of "
+                      "Model's η(φ) is 1e4 or more (there the block "
+                      "preconditioner's iterations grow past 100) and the "
+                      "mesh is one the factorisation fits (Stokes dofs up "
+                      "to 6e5 in 2D and 3e4 in 3D with MUMPS, 4e4 and 1e4 "
+                      "with KLU; decided at every mesh change), else block "
                       "preconditioned; the run prints the choice. "
                       "block preconditioned: FGMRES with AMG or GMG on the "
                       "velocity block (Preconditioner/Velocity preconditioner) "
@@ -289,8 +290,8 @@ namespace viscofilm
     convection = (prm.get("Momentum convection") == "Eulerian" ? Convection::eulerian :
                                                                   Convection::semi_lagrangian);
     direct_solver = "Amesos_" + std::string(prm.get("Direct solver") == "KLU" ? "Klu" : "Mumps");
-    check_input((method != Method::direct && method != Method::automatic) ||
-                  Amesos().Query(direct_solver),
+    direct_available = Amesos().Query(direct_solver);
+    check_input(method != Method::direct || direct_available,
                 "Stokes solver/Direct solver = " + prm.get("Direct solver") +
                   ": this build's Trilinos has no " + direct_solver +
                   "; choose KLU (always built) or Method = block preconditioned");
@@ -391,6 +392,8 @@ namespace viscofilm
 
     if (const Method method = choose_method(); !linear_solver || method != method_in_use)
       {
+        if (linear_solver)
+          earlier_preconditioner_builds += linear_solver->n_preconditioner_builds();
         linear_solver = StokesLinearSolver<dim>::create(method, parameters, model, boundary_conditions);
         method_in_use = method;
       }
@@ -412,9 +415,13 @@ namespace viscofilm
       return parameters.method;
     // Measured (doc/performance.md, "Real scales"): at a ratio of 1e4 the
     // block preconditioner takes 109-158 iterations, at 1e6 it fails; MUMPS
-    // takes 2.2 GB a rank at 6e5 dofs in 2D, 2 GB at 1.1e5 in 3D (233 s).
-    const types::global_dof_index largest = (dim == 2 ? 600000 : 30000);
-    return (model.viscosity_ratio() >= 1e4 && dofs.n_dofs() <= largest) ?
+    // takes 2.2 GB a rank at 6e5 dofs in 2D, 2 GB at 1.1e5 in 3D (233 s);
+    // KLU, on one rank, 1.1 s a step at 3.8e4 in 2D, 19.5 s at 1.5e5.
+    const bool                    mumps   = (parameters.direct_solver == "Amesos_Mumps");
+    const types::global_dof_index largest = (dim == 2 ? (mumps ? 600000 : 40000) :
+                                                        (mumps ? 30000 : 10000));
+    return (parameters.direct_available && model.viscosity_ratio() >= 1e4 &&
+            dofs.n_dofs() <= largest) ?
              Method::direct :
              Method::block_preconditioned;
   }
@@ -619,7 +626,7 @@ namespace viscofilm
   unsigned int
   StokesFlow<dim>::n_preconditioner_builds() const
   {
-    return linear_solver->n_preconditioner_builds();
+    return earlier_preconditioner_builds + linear_solver->n_preconditioner_builds();
   }
 
 

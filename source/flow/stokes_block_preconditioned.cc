@@ -34,9 +34,10 @@ namespace viscofilm
   {
     /// What a user can do when the iterations do not converge.
     const std::string direct_hint =
-      "; at viscosity ratios of 1e4 and more the block preconditioner's "
-      "iterations grow, and Stokes solver/Method = direct (or auto, which "
-      "picks it there) is robust (doc/numerics-stokes.md)";
+      "; where the block preconditioner fails (viscosity ratios of 1e4 and "
+      "more, cell Reynolds numbers above about 10 with Eulerian "
+      "convection), Stokes solver/Method = direct is robust on meshes its "
+      "factorisation fits (doc/numerics-stokes.md)";
 
     /// cg.solve(…), or a message naming the inner solve @p what and its
     /// iteration limit @p parameter if it does not converge (not FGMRES's

@@ -15,8 +15,11 @@ namespace viscofilm
           return make_direct_solver<dim>(parameters);
         case StokesFlow<dim>::Method::thesis:
           return make_thesis_solver<dim>(parameters);
-        default:
+        case StokesFlow<dim>::Method::block_preconditioned:
           return make_block_preconditioned_solver<dim>(parameters, model, boundary_conditions);
+        default:
+          Assert(false, ExcInternalError()); // auto: StokesFlow chooses
+          return nullptr;
       }
   }
 

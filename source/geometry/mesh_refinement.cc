@@ -15,7 +15,7 @@ namespace viscofilm
 {
   template <int dim>
   void
-  MeshRefinement<dim>::declare_parameters(ParameterHandler &prm)
+  MeshRefinement<dim>::Parameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Mesh refinement");
     prm.declare_entry("Adaptive",
@@ -66,7 +66,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  MeshRefinement<dim>::parse_parameters(ParameterHandler &prm,
+  MeshRefinement<dim>::Parameters::parse_parameters(ParameterHandler &prm,
                                    const unsigned int initial_level)
   {
     prm.enter_subsection("Mesh refinement");
@@ -103,6 +103,12 @@ namespace viscofilm
 
 
   template <int dim>
+  MeshRefinement<dim>::MeshRefinement(const Parameters &parameters)
+    : parameters(parameters)
+  {}
+
+
+  template <int dim>
   bool
   MeshRefinement<dim>::flag_cells(parallel::distributed::Triangulation<dim> &triangulation,
                              const VolumeFraction<dim> &volume_fraction,
@@ -112,7 +118,7 @@ namespace viscofilm
                              const InitialInput *  input) const
   {
     // Velocity part: off before the first Stokes solve (u = 0).
-    const double  max_velocity = velocity_indicator ? stokes.max_velocity() : 0;
+    const double  max_velocity = parameters.velocity_indicator ? stokes.max_velocity() : 0;
     Vector<float> velocity_error;
     if (max_velocity > 0)
       velocity_error = stokes.velocity_error_indicator();
@@ -128,10 +134,11 @@ namespace viscofilm
     const auto fraction_need = [&](const std::vector<double> &values) {
       const auto [low, high] = std::minmax_element(values.begin(), values.end());
       double need = 0;
-      if (interface_indicator)
-        need = (*high - *low) / threshold;
-      if (biofilm_indicator)
-        need = std::max({need, (*high - *low) / threshold, *high / threshold});
+      if (parameters.interface_indicator)
+        need = (*high - *low) / parameters.threshold;
+      if (parameters.biofilm_indicator)
+        need = std::max(
+          {need, (*high - *low) / parameters.threshold, *high / parameters.threshold});
       return need;
     };
     for (const auto &cell : dofs.active_cell_iterators())
@@ -165,14 +172,14 @@ namespace viscofilm
           if (max_velocity > 0)
             need = std::max(need,
                             velocity_error[cell->active_cell_index()] /
-                              (velocity_threshold * max_velocity));
+                              (parameters.velocity_threshold * max_velocity));
           const unsigned int level = cell->level();
-          if (need > 1 && level < max_level)
+          if (need > 1 && level < parameters.max_level)
             {
               cell->set_refine_flag();
               ++n_flagged;
             }
-          else if (coarsen && need < 0.25 && level > min_level)
+          else if (coarsen && need < 0.25 && level > parameters.min_level)
             {
               cell->set_coarsen_flag();
               ++n_flagged;

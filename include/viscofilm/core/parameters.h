@@ -40,7 +40,7 @@ namespace viscofilm
     parse_parameters(ParameterHandler &prm, const std::string &directory);
 
     Geometry<dim>            geometry;
-    MeshRefinement<dim>      mesh_refinement;
+    typename MeshRefinement<dim>::Parameters mesh_refinement;
     TimeStepping             time_stepping;
     Model                    model;
     BoundaryConditions<dim>  boundary_conditions;

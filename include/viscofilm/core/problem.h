@@ -138,6 +138,7 @@ namespace viscofilm
     VolumeFraction<dim>                     volume_fraction;
     ElasticStress<dim>                      stress;
     DepartureFeet<dim>                      departure_feet;
+    MeshRefinement<dim>                     mesh_refinement;
     BiofilmLoads<dim>                       loads;
     Detachment<dim>                         detachment;
     Output<dim>                             output;

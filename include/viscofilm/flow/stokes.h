@@ -107,6 +107,7 @@ namespace viscofilm
       Convection      convection     = Convection::semi_lagrangian;
       /// The Amesos package of Method = direct.
       std::string     direct_solver  = "Amesos_Mumps";
+      bool            direct_available = true; // this Trilinos has direct_solver
       double          tolerance      = 1e-8;
       double          predictor_tolerance = 0; // 0: tolerance
       unsigned int    max_iterations = 1000;
@@ -362,6 +363,8 @@ namespace viscofilm
     /// The matrices, preconditioners and solver (Method).
     std::unique_ptr<StokesLinearSolver<dim>> linear_solver; // from setup_dofs()
     Method                                   method_in_use = Method::automatic;
+    /// The velocity AMG builds of the linear solvers Method = auto replaced.
+    unsigned int earlier_preconditioner_builds = 0;
   };
 } // namespace viscofilm
 

@@ -23,12 +23,27 @@ namespace viscofilm
   class MeshRefinement
   {
   public:
-    static void
-    declare_parameters(ParameterHandler &prm);
-    /// @p initial_level: Geometry/Initial global refinement, which must lie
-    /// between the minimum and maximum level.
-    void
-    parse_parameters(ParameterHandler &prm, const unsigned int initial_level);
+    struct Parameters
+    {
+      static void
+      declare_parameters(ParameterHandler &prm);
+      /// @p initial_level: Geometry/Initial global refinement, which must lie
+      /// between the minimum and maximum level.
+      void
+      parse_parameters(ParameterHandler &prm, const unsigned int initial_level);
+
+      bool         adaptive  = false;
+      unsigned int interval  = 10;
+      unsigned int min_level = 0;
+      unsigned int max_level = 0;
+      double       threshold = 0.005;
+      bool         interface_indicator = false;
+      bool         biofilm_indicator   = true;
+      bool         velocity_indicator  = true;
+      double       velocity_threshold = 0.002;
+    };
+
+    explicit MeshRefinement(const Parameters &parameters);
 
     /// The input φ at t = 0 when it has detail between φ's nodes (an
     /// image): the φ indicators take its values on a grid of @p spacing
@@ -55,15 +70,8 @@ namespace viscofilm
                const bool                               coarsen,
                const InitialInput *                     input = nullptr) const;
 
-    bool         adaptive  = false;
-    unsigned int interval  = 10;
-    unsigned int min_level = 0;
-    unsigned int max_level = 0;
-    double       threshold = 0.005;
-    bool         interface_indicator = false;
-    bool         biofilm_indicator   = true;
-    bool         velocity_indicator  = true;
-    double       velocity_threshold = 0.002;
+  private:
+    const Parameters &parameters;
   };
 } // namespace viscofilm
 
