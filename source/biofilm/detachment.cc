@@ -495,7 +495,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  Detachment<dim>::add_statistics(CsvFile &statistics) const
+  Detachment<dim>::add_statistics(CsvFile &statistics, const double /*time*/) const
   {
     if (!parameters.enabled)
       return;

@@ -157,7 +157,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  BiofilmLoads<dim>::add_statistics(CsvFile &statistics) const
+  BiofilmLoads<dim>::add_statistics(CsvFile &statistics, const double /*time*/) const
   {
     const QGauss<dim> quadrature(3);
     const QGauss<dim - 1> face_quadrature(3);

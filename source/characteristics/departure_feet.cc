@@ -777,7 +777,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  DepartureFeet<dim>::add_statistics(CsvFile &statistics) const
+  DepartureFeet<dim>::add_statistics(CsvFile &statistics, const double /*time*/) const
   {
     statistics.set("feet_newton_iterations", accumulated.max_newton_iterations);
     statistics.set("feet_left_cell", accumulated.n_left_cell);

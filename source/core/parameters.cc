@@ -21,7 +21,7 @@ namespace viscofilm
     BiofilmLoads<dim>::Parameters::declare_parameters(prm);
     Detachment<dim>::Parameters::declare_parameters(prm);
     Output<dim>::Parameters::declare_parameters(prm);
-    Verification<dim>::declare_parameters(prm);
+    Verification<dim>::Parameters::declare_parameters(prm);
     Checkpoint<dim>::Parameters::declare_parameters(prm);
   }
 

@@ -102,7 +102,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  StokesFlow<dim>::add_statistics(CsvFile &statistics) const
+  StokesFlow<dim>::add_statistics(CsvFile &statistics, const double /*time*/) const
   {
     statistics.set("stokes_preconditioner_builds", n_preconditioner_builds());
     statistics.set("stokes_viscosity_change", viscosity_change_since_build());
@@ -214,7 +214,7 @@ namespace viscofilm
   // files would be ill-formed).
 #define INSTANTIATE(dim)                                                          \
   template void StokesFlow<dim>::add_output(DataOut<dim> &);                      \
-  template void StokesFlow<dim>::add_statistics(CsvFile &) const;                 \
+  template void StokesFlow<dim>::add_statistics(CsvFile &, const double) const;   \
   template double StokesFlow<dim>::max_velocity() const;                          \
   template double StokesFlow<dim>::max_cell_divergence() const;                   \
   template Vector<float> StokesFlow<dim>::velocity_error_indicator() const;       \

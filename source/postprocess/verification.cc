@@ -9,6 +9,7 @@
 #include <viscofilm/core/dof_cell.h>
 #include <viscofilm/flow/stokes.h>
 #include <viscofilm/stress/stress.h>
+#include <viscofilm/postprocess/output.h>
 #include <viscofilm/postprocess/verification.h>
 #include <viscofilm/transport/volume_fraction.h>
 
@@ -18,7 +19,7 @@ namespace viscofilm
 {
   template <int dim>
   void
-  Verification<dim>::declare_parameters(ParameterHandler &prm)
+  Verification<dim>::Parameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Verification");
     ParsedExpression<dim>::declare(prm,
@@ -53,7 +54,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  Verification<dim>::parse_parameters(ParameterHandler &prm)
+  Verification<dim>::Parameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Verification");
     const std::string constants = prm.get("Function constants");
@@ -108,12 +109,10 @@ namespace viscofilm
 
   template <int dim>
   std::pair<double, double>
-  Verification<dim>::l2_errors(const StokesFlow<dim> &stokes,
-                          const double        time,
-                          const bool          pressure_up_to_constant) const
+  Verification<dim>::l2_errors(const double time) const
   {
-    Assert(exact_solution, ExcInternalError());
-    const ExpressionAt<dim>             exact = exact_solution->at(time);
+    Assert(parameters.exact_solution, ExcInternalError());
+    const ExpressionAt<dim>             exact = parameters.exact_solution->at(time);
     const ComponentSelectFunction<dim> velocity(std::make_pair(0, dim), dim + 1);
     const ComponentSelectFunction<dim> pressure(dim, dim + 1);
     const auto error = [&](const VectorTools::NormType norm, const Function<dim> &mask) {
@@ -133,11 +132,9 @@ namespace viscofilm
 
   template <int dim>
   double
-  Verification<dim>::stress_l2_error(const ElasticStress<dim> & stress,
-                                const VolumeFraction<dim> &volume_fraction,
-                                const double          time) const
+  Verification<dim>::stress_l2_error(const double time) const
   {
-    const ExpressionAt<dim> exact = exact_stress->at(time);
+    const ExpressionAt<dim> exact = parameters.exact_stress->at(time);
     const DoFHandler<dim> &dof_handler = stress.dof_handler();
     const QGauss<dim>      quadrature(dof_handler.get_fe().degree + 2);
     FEValues<dim>          fe_values(stress.mapping(),
@@ -174,14 +171,44 @@ namespace viscofilm
 
   template <int dim>
   double
-  Verification<dim>::volume_fraction_l2_error(const VolumeFraction<dim> &volume_fraction,
-                                         const double          time) const
+  Verification<dim>::volume_fraction_l2_error(const double time) const
   {
     return global_error(volume_fraction.mapping(),
                         volume_fraction.dof_handler(),
                         volume_fraction.solution(),
-                        exact_volume_fraction->at(time),
+                        parameters.exact_volume_fraction->at(time),
                         VectorTools::L2_norm);
+  }
+
+
+  template <int dim>
+  Verification<dim>::Verification(const Parameters &         parameters,
+                                  const StokesFlow<dim> &    stokes,
+                                  const ElasticStress<dim> & stress,
+                                  const VolumeFraction<dim> &volume_fraction,
+                                  const bool                 pressure_up_to_constant)
+    : parameters(parameters)
+    , stokes(stokes)
+    , stress(stress)
+    , volume_fraction(volume_fraction)
+    , pressure_up_to_constant(pressure_up_to_constant)
+  {}
+
+
+  template <int dim>
+  void
+  Verification<dim>::add_statistics(CsvFile &statistics, const double time) const
+  {
+    if (parameters.exact_solution)
+      {
+        const auto [velocity_error, pressure_error] = l2_errors(time);
+        statistics.set("velocity_l2_error", velocity_error);
+        statistics.set("pressure_l2_error", pressure_error);
+      }
+    if (parameters.exact_stress)
+      statistics.set("stress_l2_error", stress_l2_error(time));
+    if (parameters.exact_volume_fraction)
+      statistics.set("volume_fraction_l2_error", volume_fraction_l2_error(time));
   }
 
 

@@ -945,7 +945,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  ElasticStress<dim>::add_statistics(CsvFile &statistics) const
+  ElasticStress<dim>::add_statistics(CsvFile &statistics, const double /*time*/) const
   {
     statistics.set("min_conformation_eigenvalue", min_eigenvalue());
     statistics.set("feet_remote", n_remote_feet());

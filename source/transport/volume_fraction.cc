@@ -785,7 +785,7 @@ namespace viscofilm
 
   template <int dim>
   void
-  VolumeFraction<dim>::add_statistics(CsvFile &statistics) const
+  VolumeFraction<dim>::add_statistics(CsvFile &statistics, const double /*time*/) const
   {
     statistics.set("volume_fraction_integral", integral());
     statistics.set("volume_fraction_outflow", exchange.outflow);

@@ -103,7 +103,7 @@ namespace viscofilm
     /// with Detachment/Release = true, so that other runs' files keep their
     /// columns.
     void
-    add_statistics(CsvFile &statistics) const override;
+    add_statistics(CsvFile &statistics, const double time) const override;
 
     /// phi_detached in the snapshots (with Release = true).
     void

@@ -74,7 +74,7 @@ namespace viscofilm
     /// (and force_z_<name> in 3D) per force boundary: per unit depth in 2D,
     /// totals in 3D (collective).
     void
-    add_statistics(CsvFile &statistics) const override;
+    add_statistics(CsvFile &statistics, const double time) const override;
 
     /// Fields shear_stress (σ_xy) and von_mises (σ_vm) in the snapshots.
     void

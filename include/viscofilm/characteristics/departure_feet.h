@@ -224,7 +224,7 @@ namespace viscofilm
     /// (feet_newton_iterations, feet_left_cell, feet_left_domain,
     /// feet_substepped).
     void
-    add_statistics(CsvFile &statistics) const override;
+    add_statistics(CsvFile &statistics, const double time) const override;
 
     void
     reset_statistics();

@@ -54,7 +54,7 @@ namespace viscofilm
     typename BiofilmLoads<dim>::Parameters   loads; // Forces
     typename Detachment<dim>::Parameters     detachment;
     typename Output<dim>::Parameters output;
-    Verification<dim>        verification;
+    typename Verification<dim>::Parameters verification;
     typename Checkpoint<dim>::Parameters checkpointing;
   };
 } // namespace viscofilm

@@ -139,6 +139,7 @@ namespace viscofilm
     ElasticStress<dim>                      stress;
     DepartureFeet<dim>                      departure_feet;
     MeshRefinement<dim>                     mesh_refinement;
+    Verification<dim>                       verification;
     BiofilmLoads<dim>                       loads;
     Detachment<dim>                         detachment;
     Output<dim>                             output;

@@ -34,9 +34,9 @@ namespace viscofilm
   public:
     virtual ~Reporter() = default;
 
-    /// Set this component's columns of the current row.
+    /// Set this component's columns of the current row, that of @p time.
     virtual void
-    add_statistics(CsvFile & /*statistics*/) const
+    add_statistics(CsvFile & /*statistics*/, const double /*time*/) const
     {}
 
     /// Add this component's datasets to a snapshot; what @p data_out

@@ -266,7 +266,7 @@ namespace viscofilm
     /// statistics.csv: stokes_preconditioner_builds,
     /// stokes_viscosity_change, max_velocity, max_cell_divergence.
     void
-    add_statistics(CsvFile &statistics) const override;
+    add_statistics(CsvFile &statistics, const double time) const override;
 
     /// k_{n-1} (previous_time_step).
     void

@@ -177,7 +177,7 @@ namespace viscofilm
     /// statistics.csv: min_conformation_eigenvalue, feet_remote,
     /// feet_positivity_fixes, conformation_repairs.
     void
-    add_statistics(CsvFile &statistics) const override;
+    add_statistics(CsvFile &statistics, const double time) const override;
 
   private:
     using FieldType = Field<dim, TrilinosWrappers::MPI::Vector>;

@@ -142,7 +142,7 @@ namespace viscofilm
     /// boundary exchange since t = 0, below), _min, _max and, with FCT,
     /// _substeps.
     void
-    add_statistics(CsvFile &statistics) const override;
+    add_statistics(CsvFile &statistics, const double time) const override;
 
     /// The boundary exchange's totals.
     void
