@@ -301,7 +301,7 @@ namespace viscofilm
       pcout << "Adapted mesh: " << triangulation.n_global_active_cells()
             << " cells, " << stokes.n_dofs() << " Stokes dofs, smallest Δx = "
             << min_cell_size << std::endl;
-    stress.set_initial_conditions(parameters.initial_conditions.stress.at(0), volume_fraction);
+    stress.set_initial_conditions(parameters.initial_conditions.stress.at(0));
     stokes.invalidate_matrix();
     // With Res > 0, u = 0 is the initial condition; boundary data that are
     // not zero at t = 0 make it an impulsive start (ElasticStress::update).
@@ -377,7 +377,7 @@ namespace viscofilm
     {
       TimerOutput::Scope t(*computing_timer, "departure feet");
       if (viscoelastic)
-        stress.trace_back(departure_feet, stokes, volume_fraction, time - k, k); // c^n at t_n
+        stress.trace_back(departure_feet, stokes, time - k, k); // c^n at t_n
       stokes.trace_back(departure_feet, k);
     }
 
@@ -420,7 +420,7 @@ namespace viscofilm
         if (viscoelastic)
           {
             TimerOutput::Scope t(*computing_timer, "stress update");
-            report.picard_stress_change = stress.update(stokes, volume_fraction, k);
+            report.picard_stress_change = stress.update(stokes, k);
           }
         if (phi_in_loop)
           {

@@ -224,7 +224,7 @@ namespace viscofilm
            static_cast<const FiniteElement<dim> &>(FE_Q<dim>(2)),
          n_symmetric_components<dim>)
     , stokes_quadrature(stokes_quadrature)
-    , output_volume_fraction(volume_fraction)
+    , volume_fraction(volume_fraction)
   {}
 
 
@@ -341,10 +341,9 @@ namespace viscofilm
 
   template <int dim>
   void
-  ElasticStress<dim>::set_initial_conditions(const Function<dim> & initial_stress,
-                                        const VolumeFraction<dim> &volume_fraction)
+  ElasticStress<dim>::set_initial_conditions(const Function<dim> &initial_stress)
   {
-    const std::vector<double> phi = nodal_volume_fraction(volume_fraction);
+    const std::vector<double> phi = nodal_volume_fraction();
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(),
                                               triangulation.get_communicator());
     // Without elastic stress τ ≡ 0 (c = shift I) whatever the input says:
@@ -385,7 +384,6 @@ namespace viscofilm
   void
   ElasticStress<dim>::trace_back(DepartureFeet<dim> & feet,
                             const StokesFlow<dim> & stokes,
-                            const VolumeFraction<dim> &volume_fraction,
                             const double          time,
                             const double          time_step)
   {
@@ -502,15 +500,14 @@ namespace viscofilm
     remote_feet      = Utilities::MPI::sum(remote, comm);
     positivity_fixes = Utilities::MPI::sum(fixes, comm);
     if (order == 2)
-      at_feet_for_second_order(feet, stokes, volume_fraction);
+      at_feet_for_second_order(feet, stokes);
   }
 
 
   template <int dim>
   void
-  ElasticStress<dim>::at_feet_for_second_order(const DepartureFeet<dim> & feet,
-                                          const StokesFlow<dim> & stokes,
-                                          const VolumeFraction<dim> &volume_fraction)
+  ElasticStress<dim>::at_feet_for_second_order(const DepartureFeet<dim> &feet,
+                                               const StokesFlow<dim> &   stokes)
   {
     // ∇u^n (the deformation's rate at t_n) and φ^n at the feet (inflow feet:
     // the boundary's volume fraction, as for c there). ∇u^n is the field a
@@ -657,7 +654,7 @@ namespace viscofilm
 
   template <int dim>
   std::vector<double>
-  ElasticStress<dim>::nodal_volume_fraction(const VolumeFraction<dim> &volume_fraction) const
+  ElasticStress<dim>::nodal_volume_fraction() const
   {
     const Quadrature<dim> at_nodes(fe.base_element(0).get_unit_support_points());
     FEValues<dim> phi_values(volume_fraction.dof_handler().get_fe(), at_nodes, update_values);
@@ -678,12 +675,10 @@ namespace viscofilm
 
   template <int dim>
   double
-  ElasticStress<dim>::update(const StokesFlow<dim> & stokes,
-                        const VolumeFraction<dim> &volume_fraction,
-                        const double          time_step)
+  ElasticStress<dim>::update(const StokesFlow<dim> &stokes, const double time_step)
   {
     const std::vector<Tensor<2, dim>> velocity_gradient = nodal_velocity_gradient(stokes);
-    const std::vector<double>       phi = nodal_volume_fraction(volume_fraction);
+    const std::vector<double>       phi = nodal_volume_fraction();
 
     const double a     = model.slip_parameter;
     const double k     = time_step;
@@ -760,14 +755,13 @@ namespace viscofilm
     constraint_repairs = repair_positivity(distributed);
     const TrilinosWrappers::MPI::Vector previous = current_solution;
     current_solution                             = distributed;
-    return relative_change(previous, volume_fraction);
+    return relative_change(previous);
   }
 
 
   template <int dim>
   double
-  ElasticStress<dim>::relative_change(const TrilinosWrappers::MPI::Vector &previous,
-                                 const VolumeFraction<dim> &volume_fraction) const
+  ElasticStress<dim>::relative_change(const TrilinosWrappers::MPI::Vector &previous) const
   {
     // ‖Δτ‖_L2 / ‖τ‖_L2 with the Frobenius norm; Δτ = G Δc, but τ's own size,
     // not c's (which includes the relaxed state), is the scale.
@@ -938,7 +932,7 @@ namespace viscofilm
   void
   ElasticStress<dim>::add_output(DataOut<dim> &data_out)
   {
-    tau_postprocessor = std::make_unique<StressPostprocessor<dim>>(*this, output_volume_fraction);
+    tau_postprocessor = std::make_unique<StressPostprocessor<dim>>(*this, volume_fraction);
     data_out.add_data_vector(dofs, current_solution, *tau_postprocessor);
   }
 

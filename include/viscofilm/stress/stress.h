@@ -75,8 +75,8 @@ namespace viscofilm
 
     /// @p order: Time stepping/Order (1: the thesis' update, eq. 3.44; 2:
     /// the Strang-split update of update()). @p stokes_quadrature: the one
-    /// the Stokes assembly asks τ at. @p volume_fraction: the φ of the
-    /// output's τ.
+    /// the Stokes assembly asks τ at. @p volume_fraction: φ, which scales τ
+    /// and whose values at the nodes and feet the update takes.
     ElasticStress(const parallel::distributed::Triangulation<dim> &triangulation,
                   const Mapping<dim> &                           mapping,
                   const Parameters &                             parameters,
@@ -93,8 +93,7 @@ namespace viscofilm
     /// c = Model::conformation(τ0, φ) at the nodes (τ0 = 0 in the thesis;
     /// always 0 without Model/Viscoelastic).
     void
-    set_initial_conditions(const Function<dim> &    initial_stress,
-                           const VolumeFraction<dim> &volume_fraction);
+    set_initial_conditions(const Function<dim> &initial_stress);
 
     /// MODEL.md §3 step 1: the nodes' departure feet from u^n and c^n
     /// there; a foot on an inflow boundary takes that boundary's Stress at
@@ -105,7 +104,6 @@ namespace viscofilm
     void
     trace_back(DepartureFeet<dim> &  feet,
                const StokesFlow<dim> & stokes,
-               const VolumeFraction<dim> &volume_fraction,
                const double          time,
                const double          time_step);
 
@@ -121,7 +119,7 @@ namespace viscofilm
     /// (∇u^n) and the node (∇u^{n+1}), half a step of relaxation; w, α, β
     /// of φ^n at the foot (φ is constant along the characteristic).
     double
-    update(const StokesFlow<dim> &stokes, const VolumeFraction<dim> &volume_fraction, const double time_step);
+    update(const StokesFlow<dim> &stokes, const double time_step);
 
     /// Order = 2, after update(): the local error of the step, max over the
     /// nodes of ‖τ₂ − τ₁‖_F, τ₁ from the first-order update (eq. 3.44, with
@@ -217,8 +215,7 @@ namespace viscofilm
 
     /// ‖τ − τ(@p previous)‖_L2 / ‖τ‖_L2 (Frobenius norms) for the current c.
     double
-    relative_change(const TrilinosWrappers::MPI::Vector &previous,
-                    const VolumeFraction<dim> &          volume_fraction) const;
+    relative_change(const TrilinosWrappers::MPI::Vector &previous) const;
 
     /// Raise the smallest eigenvalue of c to Stress/Positivity floor at the
     /// nodes of @p distributed below it (after Q2 interpolation); returns
@@ -234,9 +231,7 @@ namespace viscofilm
 
     /// Order = 2: ∇u^n and φ^n at the feet of the last compute() of @p feet.
     void
-    at_feet_for_second_order(const DepartureFeet<dim> & feet,
-                             const StokesFlow<dim> & stokes,
-                             const VolumeFraction<dim> &volume_fraction);
+    at_feet_for_second_order(const DepartureFeet<dim> &feet, const StokesFlow<dim> &stokes);
 
     /// ∇u at every node, averaged over the node's cells.
     std::vector<Tensor<2, dim>>
@@ -248,7 +243,7 @@ namespace viscofilm
 
     /// φ at every node.
     std::vector<double>
-    nodal_volume_fraction(const VolumeFraction<dim> &volume_fraction) const;
+    nodal_volume_fraction() const;
 
     const parallel::distributed::Triangulation<dim> &triangulation;
     const Parameters &                             parameters;
@@ -258,7 +253,7 @@ namespace viscofilm
 
     const FESystem<dim>             fe;
     const Quadrature<dim>           stokes_quadrature;
-    const VolumeFraction<dim> &     output_volume_fraction;
+    const VolumeFraction<dim> &     volume_fraction;
     std::vector<Node>             nodes;
     std::vector<unsigned int>     node_of_owned_dof; // component-0 dofs only
     std::array<unsigned int, Utilities::pow(3, dim)> lexicographic_node; // [ix + 3 iy (+ 9 iz)]
