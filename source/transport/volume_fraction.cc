@@ -14,11 +14,10 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <viscofilm/core/dof_cell.h>
-#include <viscofilm/characteristics/departure_feet.h>
 #include <viscofilm/core/input.h>
 #include <viscofilm/flow/stokes.h>
 #include <viscofilm/postprocess/output.h>
-#include <viscofilm/transport/volume_fraction.h>
+#include <viscofilm/transport/transport_scheme.h>
 
 #include <algorithm>
 #include <cmath>
@@ -69,9 +68,10 @@ namespace viscofilm
   VolumeFraction<dim>::Parameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Stabilization");
-    const std::string scheme = prm.get("Volume fraction scheme");
-    bounded                  = (scheme != "thesis");
-    flux_corrected           = (scheme == "FCT");
+    const std::string name = prm.get("Volume fraction scheme");
+    scheme = (name == "semi-Lagrangian" ? Scheme::semi_lagrangian :
+              name == "FCT"             ? Scheme::flux_corrected :
+                                          Scheme::thesis);
     standard_tau  = (prm.get("GLS tau") == "standard");
     gls_parameter = prm.get_double("GLS parameter");
     prm.leave_subsection();
@@ -87,13 +87,17 @@ namespace viscofilm
     const std::string &                            name,
     const bool                                     inflow_from_boundaries)
     : FieldType(triangulation, mapping)
-    , parameters(parameters)
     , boundary_conditions(boundary_conditions)
     , mpi_communicator(triangulation.get_communicator())
     , name(name)
     , inflow_from_boundaries(inflow_from_boundaries)
     , fe(2)
+    , scheme(TransportScheme<dim>::create(parameters, *this))
   {}
+
+
+  template <int dim>
+  VolumeFraction<dim>::~VolumeFraction() = default;
 
 
   template <int dim>
@@ -189,101 +193,16 @@ namespace viscofilm
   }
 
 
-  namespace
-  {
-    /// (@p a + @p b)/2 with the ghost layout of @p a.
-    TrilinosWrappers::MPI::BlockVector
-    average(const TrilinosWrappers::MPI::BlockVector &a,
-            const TrilinosWrappers::MPI::BlockVector &b)
-    {
-      std::vector<IndexSet> owned;
-      for (unsigned int block = 0; block < a.n_blocks(); ++block)
-        owned.push_back(a.block(block).locally_owned_elements());
-      TrilinosWrappers::MPI::BlockVector sum(owned, a.block(0).get_mpi_communicator());
-      TrilinosWrappers::MPI::BlockVector other(sum);
-      sum   = a;
-      other = b;
-      sum.add(1.0, other);
-      sum *= 0.5;
-      TrilinosWrappers::MPI::BlockVector result(a);
-      result = sum;
-      return result;
-    }
-  } // namespace
-
-
   template <int dim>
   unsigned int
   VolumeFraction<dim>::advance(const StokesFlow<dim> &stokes,
-                          DepartureFeet<dim> & feet,
-                          const double        diffusion,
-                          const double        time_step,
-                          const unsigned int  order,
-                          const bool          estimate_error)
+                               DepartureFeet<dim> &   feet,
+                               const double           diffusion,
+                               const double           time_step,
+                               const unsigned int     order,
+                               const bool             estimate_error)
   {
-    last_error_estimate = 0;
-    if (parameters.flux_corrected)
-      {
-        // The limiter's fluxes and d_ij cancel in ∫φ, but the advective
-        // form's column sums leave ∫φ ∇·u: the Taylor–Hood u is
-        // divergence-free against Q1, not against φ's Q2. The diffusion step
-        // keeps the sub-cells' lumped mass, not ∫φ. And a hanging node takes
-        // the coarse face's Q2 interpolant, which can leave the free nodes'
-        // range by 1/8 of a jump. The fixer puts all three right at the
-        // fronts, within the free nodes' range: ∫φ + outflow − inflow is
-        // kept to round-off (it gained 1.0e-5 of ∫φ over the default case
-        // without).
-        const double before = integral();
-        const double mass   = before - flux_corrected_step(stokes, time_step, estimate_error);
-        const unsigned int iterations =
-          diffusion > 0 ? bounded_diffusion_step(diffusion, time_step) : 0;
-        const auto [low, high] = range(true);
-        restore_mass(mass, low, high);
-        return iterations;
-      }
-    // Second order (bounded): the feet by the midpoint rule, with u^{n+1/2}
-    // ≈ (u^n + u^{n+1})/2 (local error O(k³)); first order: with u^{n+1},
-    // as the thesis transports φ with it.
-    const bool                               midpoint_rule = parameters.bounded && order == 2;
-    const DoFHandler<dim> &                  stokes_dofs = stokes.dof_handler();
-    TrilinosWrappers::MPI::BlockVector midpoint;
-    if (midpoint_rule)
-      midpoint = average(stokes.start_of_step_solution(), stokes.solution());
-    const TrilinosWrappers::MPI::BlockVector &velocity =
-      midpoint_rule ? midpoint : stokes.solution();
-    // The mass balance of the step: M^{n+1} = M^n − k ∫_∂Ω φ^n u·n, and
-    // what of it leaves and what enters (the statistics' totals).
-    const Exchange flux = boundary_flux(stokes_dofs, velocity);
-    exchange.net += time_step * flux.net;
-    exchange.outflow += time_step * flux.outflow;
-    exchange.inflow += time_step * flux.inflow;
-    if (!parameters.bounded)
-      return gls_step(&stokes, diffusion, time_step);
-    const double mass = integral() - time_step * flux.net;
-    make_constraints(&stokes);
-    TrilinosWrappers::MPI::Vector advected, lower, upper;
-    if (estimate_error && order == 2)
-      {
-        semi_lagrangian_step(
-          stokes_dofs, stokes.solution(), feet, time_step, advected, lower, upper);
-        const TrilinosWrappers::MPI::Vector first_order = advected;
-        semi_lagrangian_step(stokes_dofs, velocity, feet, time_step, advected, lower, upper);
-        last_error_estimate = max_difference(advected, first_order);
-      }
-    else
-      semi_lagrangian_step(stokes_dofs, velocity, feet, time_step, advected, lower, upper);
-    current_solution = advected;
-    const unsigned int iterations = bounded_diffusion_step(diffusion, time_step);
-    restore_mass(mass, lower, upper);
-    return iterations;
-  }
-
-
-  template <int dim>
-  unsigned int
-  VolumeFraction<dim>::substeps() const
-  {
-    return last_substeps;
+    return scheme->advance(stokes, feet, diffusion, time_step, order, estimate_error);
   }
 
 
@@ -291,7 +210,17 @@ namespace viscofilm
   double
   VolumeFraction<dim>::error_estimate() const
   {
-    return last_error_estimate;
+    return scheme->error_estimate();
+  }
+
+
+  template <int dim>
+  void
+  VolumeFraction<dim>::add_exchange(const Exchange &rates, const double time_step)
+  {
+    exchange.net += time_step * rates.net;
+    exchange.outflow += time_step * rates.outflow;
+    exchange.inflow += time_step * rates.inflow;
   }
 
 
@@ -315,115 +244,13 @@ namespace viscofilm
 
   template <int dim>
   void
-  VolumeFraction<dim>::soften(const double  diffusion,
-                         const unsigned int n_steps,
-                         const double       time_step)
+  VolumeFraction<dim>::soften(const double       diffusion,
+                              const unsigned int n_steps,
+                              const double       time_step)
   {
-    if (!parameters.bounded)
-      {
-        for (unsigned int s = 0; s < n_steps; ++s)
-          gls_step(nullptr, diffusion, time_step);
-        return;
-      }
     make_constraints(nullptr);
     for (unsigned int s = 0; s < n_steps; ++s)
-      {
-        // The lumped mass of the sub-cells is conserved, not ∫φ: restore it
-        // within the range of φ^n.
-        const double mass            = integral();
-        const auto [phi_min, phi_max] = range();
-        bounded_diffusion_step(diffusion, time_step);
-        restore_mass(mass, phi_min, phi_max);
-      }
-  }
-
-
-  template <int dim>
-  unsigned int
-  VolumeFraction<dim>::gls_step(const StokesFlow<dim> *stokes,
-                       const double        diffusion,
-                       const double        time_step)
-  {
-    make_constraints(stokes);
-    system_matrix = 0;
-    system_rhs    = 0;
-
-    const QGauss<dim> quadrature(fe.degree + 1);
-    FEValues<dim>     fe_values(this->mapping(),
-                          fe,
-                          quadrature,
-                          update_values | update_gradients | update_JxW_values);
-    std::unique_ptr<FEValues<dim>> stokes_values;
-    if (stokes != nullptr)
-      stokes_values = std::make_unique<FEValues<dim>>(this->mapping(),
-                                                      stokes->dof_handler().get_fe(),
-                                                    quadrature,
-                                                    update_values);
-    const FEValuesExtractors::Vector velocities(0);
-
-    const unsigned int n_dofs = fe.n_dofs_per_cell();
-    const unsigned int n_q    = quadrature.size();
-    FullMatrix<double> cell_matrix(n_dofs, n_dofs);
-    Vector<double>     cell_rhs(n_dofs);
-    std::vector<types::global_dof_index> local_dofs(n_dofs);
-    std::vector<double>       phi_old(n_q);
-    std::vector<Tensor<1, dim>> velocity(n_q);
-    std::vector<double>       streamline(n_dofs); // ψ_i/k + u·∇ψ_i
-    const double              k = time_step;
-
-    for (const auto &cell : dofs.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values.get_function_values(current_solution, phi_old);
-          if (stokes != nullptr)
-            {
-              stokes_values->reinit(cell_of(stokes->dof_handler(), cell));
-              (*stokes_values)[velocities].get_function_values(stokes->solution(),
-                                                               velocity);
-            }
-          // The edge of a square/cube cell.
-          const double h = cell->diameter() / std::sqrt(double(dim));
-
-          cell_matrix = 0;
-          cell_rhs    = 0;
-          for (unsigned int q = 0; q < n_q; ++q)
-            {
-              const Tensor<1, dim> u = (stokes != nullptr ? velocity[q] : Tensor<1, dim>());
-              double tau = 0;
-              if (stokes != nullptr)
-                tau = parameters.standard_tau ?
-                        parameters.gls_parameter /
-                          std::sqrt(4 / (k * k) + std::pow(2 * u.norm() / h, 2)) :
-                        parameters.gls_parameter;
-              // φ-scaled diffusion D φ^n (eq. 3.45), φ^n clipped at 0.
-              const double kappa = k * diffusion * std::max(phi_old[q], 0.0);
-              const double JxW   = fe_values.JxW(q);
-              for (unsigned int i = 0; i < n_dofs; ++i)
-                streamline[i] = fe_values.shape_value(i, q) / k +
-                                u * fe_values.shape_grad(i, q);
-              // eq. 3.49/3.50
-              for (unsigned int i = 0; i < n_dofs; ++i)
-                {
-                  const double          psi_i      = fe_values.shape_value(i, q);
-                  const Tensor<1, dim> &grad_psi_i = fe_values.shape_grad(i, q);
-                  for (unsigned int j = 0; j < n_dofs; ++j)
-                    cell_matrix(i, j) +=
-                      (psi_i * fe_values.shape_value(j, q) +
-                       kappa * (grad_psi_i * fe_values.shape_grad(j, q)) +
-                       k * psi_i * (u * fe_values.shape_grad(j, q)) +
-                       tau * k * streamline[i] * streamline[j]) *
-                      JxW;
-                  cell_rhs(i) += (phi_old[q] * psi_i + tau * phi_old[q] * streamline[i]) * JxW;
-                }
-            }
-          cell->get_dof_indices(local_dofs);
-          constraints.distribute_local_to_global(
-            cell_matrix, cell_rhs, local_dofs, system_matrix, system_rhs);
-        }
-    system_matrix.compress(VectorOperation::add);
-    system_rhs.compress(VectorOperation::add);
-    return solve();
+      scheme->diffuse(diffusion, time_step);
   }
 
 
@@ -453,75 +280,6 @@ namespace viscofilm
                 ExcMessage("the volume fraction is not finite (NaN or inf)"));
     current_solution = distributed;
     return control.last_step();
-  }
-
-
-  template <int dim>
-  void
-  VolumeFraction<dim>::semi_lagrangian_step(const DoFHandler<dim> &stokes_dofs,
-                                       const TrilinosWrappers::MPI::BlockVector &velocity,
-                                       DepartureFeet<dim> &                      feet,
-                                       const double                   time_step,
-                                       TrilinosWrappers::MPI::Vector &advected,
-                                       TrilinosWrappers::MPI::Vector &lower,
-                                       TrilinosWrappers::MPI::Vector &upper) const
-  {
-    // The free nodes this rank owns, each with a cell around it as the hint.
-    const IndexSet &                                    owned = dofs.locally_owned_dofs();
-    const std::vector<Point<dim>> &                       unit_support = fe.get_unit_support_points();
-    std::vector<bool>                                   seen(owned.n_elements());
-    std::vector<Point<dim>>                               nodes;
-    std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
-    std::vector<types::global_dof_index>                node_dofs, local_dofs(fe.n_dofs_per_cell());
-    for (const auto &cell : dofs.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          cell->get_dof_indices(local_dofs);
-          for (unsigned int i = 0; i < local_dofs.size(); ++i)
-            if (owned.is_element(local_dofs[i]) &&
-                !constraints.is_constrained(local_dofs[i]) &&
-                !seen[owned.index_within_set(local_dofs[i])])
-              {
-                seen[owned.index_within_set(local_dofs[i])] = true;
-                nodes.push_back(this->mapping().transform_unit_to_real_cell(cell, unit_support[i]));
-                cells.push_back(cell);
-                node_dofs.push_back(local_dofs[i]);
-              }
-        }
-
-    feet.compute(nodes, cells, stokes_dofs, velocity, time_step);
-    std::vector<double> cell_values(fe.n_dofs_per_cell());
-    auto                at_feet = feet.at_feet().template evaluate<3>(
-      [&](const typename Triangulation<dim>::active_cell_iterator &cell,
-          const ArrayView<const Point<dim>> &             unit_points,
-          const ArrayView<std::array<double, 3>> &      values) {
-        cell_of(dofs, cell)->get_dof_values(current_solution, cell_values.begin(), cell_values.end());
-        const auto [low, high] = std::minmax_element(cell_values.begin(), cell_values.end());
-        for (unsigned int p = 0; p < unit_points.size(); ++p)
-          {
-            double value = 0;
-            for (unsigned int i = 0; i < cell_values.size(); ++i)
-              value += cell_values[i] * fe.shape_value(i, unit_points[p]);
-            values[p] = {{value, *low, *high}};
-          }
-      });
-    // A characteristic entering through boundary b brings b's inflow value.
-    const std::vector<types::boundary_id> &inflow = feet.inflow_boundaries();
-    for (unsigned int n = 0; n < nodes.size(); ++n)
-      if (inflow[n] != numbers::invalid_boundary_id)
-        at_feet[n].fill(inflow_value(inflow[n]));
-
-    advected.reinit(owned, mpi_communicator);
-    lower.reinit(owned, mpi_communicator);
-    upper.reinit(owned, mpi_communicator);
-    for (unsigned int n = 0; n < nodes.size(); ++n)
-      {
-        const auto &[value, low, high] = at_feet[n];
-        advected[node_dofs[n]]         = std::clamp(value, low, high);
-        lower[node_dofs[n]]            = low;
-        upper[node_dofs[n]]            = high;
-      }
-    constraints.distribute(advected);
   }
 
 
@@ -793,8 +551,7 @@ namespace viscofilm
     const auto [phi_min, phi_max] = range();
     statistics.set("volume_fraction_min", phi_min);
     statistics.set("volume_fraction_max", phi_max);
-    if (parameters.flux_corrected)
-      statistics.set("volume_fraction_substeps", substeps());
+    scheme->add_statistics(statistics);
   }
 
 
@@ -835,7 +592,7 @@ namespace viscofilm
   VolumeFraction<dim>::set(TrilinosWrappers::MPI::Vector &distributed)
   {
     constraints.distribute(distributed);
-    if (parameters.bounded)
+    if (scheme->bounded())
       bound_hanging_nodes(distributed, distributed, distributed);
     current_solution = distributed;
   }
@@ -853,7 +610,7 @@ namespace viscofilm
   void
   VolumeFraction<dim>::prepare_for_refinement()
   {
-    if (parameters.bounded)
+    if (scheme->bounded())
       {
         const auto [phi_min, phi_max] = range();
         before_transfer = std::array<double, 3>{{phi_min, phi_max, integral()}};
