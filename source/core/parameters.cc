@@ -18,6 +18,7 @@ namespace viscofilm
     ElasticStress<dim>::Parameters::declare_parameters(prm);
     DepartureFeet<dim>::Parameters::declare_parameters(prm);
     VolumeFraction<dim>::Parameters::declare_parameters(prm);
+    Substrate<dim>::Parameters::declare_parameters(prm);
     BiofilmLoads<dim>::Parameters::declare_parameters(prm);
     Detachment<dim>::Parameters::declare_parameters(prm);
     Output<dim>::Parameters::declare_parameters(prm);
@@ -55,6 +56,7 @@ namespace viscofilm
                   ") and a polymer viscosity > 0; use Foot interpolation = conformation");
     departure_feet.parse_parameters(prm);
     volume_fraction.parse_parameters(prm);
+    substrate.parse_parameters(prm, boundary_conditions);
     loads.parse_parameters(prm, boundary_conditions);
     detachment.parse_parameters(prm, boundary_conditions);
     output.parse_parameters(prm);

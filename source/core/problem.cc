@@ -104,6 +104,16 @@ namespace viscofilm
   {
     if (VolumeFraction<dim> *detached = detachment.detached_fraction())
       fields.push_back(detached);
+    if (parameters.substrate.enabled)
+      {
+        substrate = std::make_unique<Substrate<dim>>(triangulation,
+                                                     mapping,
+                                                     parameters.substrate,
+                                                     parameters.boundary_conditions,
+                                                     volume_fraction);
+        fields.push_back(substrate.get());
+        reporters.push_back(substrate.get());
+      }
   }
 
 
@@ -297,6 +307,8 @@ namespace viscofilm
         softened = !(adaptive && refine_mesh(false));
       }
     volume_fraction.advance_time(); // φ^0: the first step's φ^n
+    if (substrate)
+      substrate->set_initial_values();
     if (adaptive)
       pcout << "Adapted mesh: " << triangulation.n_global_active_cells()
             << " cells, " << stokes.n_dofs() << " Stokes dofs, smallest Δx = "
@@ -452,6 +464,12 @@ namespace viscofilm
     // 3. Order 1: φ^{n+1} with u^{n+1}. The viscosity changes with φ.
     if (!phi_in_loop)
       report.transport_iterations = advance_volume_fraction(k);
+    // 4. The substrate with u^{n+1} and φ^{n+1}.
+    if (substrate)
+      {
+        TimerOutput::Scope t(*computing_timer, "substrate");
+        substrate->advance(stokes, k);
+      }
     stokes.invalidate_matrix();
     return report;
   }

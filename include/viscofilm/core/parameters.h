@@ -19,6 +19,7 @@
 #include <viscofilm/stress/stress.h>
 #include <viscofilm/core/time_stepping.h>
 #include <viscofilm/postprocess/verification.h>
+#include <viscofilm/transport/substrate.h>
 #include <viscofilm/transport/volume_fraction.h>
 
 namespace viscofilm
@@ -51,6 +52,7 @@ namespace viscofilm
     typename ElasticStress<dim>::Parameters  stress;
     typename DepartureFeet<dim>::Parameters  departure_feet;
     typename VolumeFraction<dim>::Parameters volume_fraction; // Stabilization
+    typename Substrate<dim>::Parameters      substrate;
     typename BiofilmLoads<dim>::Parameters   loads; // Forces
     typename Detachment<dim>::Parameters     detachment;
     typename Output<dim>::Parameters output;

@@ -142,9 +142,11 @@ namespace viscofilm
     Verification<dim>                       verification;
     BiofilmLoads<dim>                       loads;
     Detachment<dim>                         detachment;
+    /// With Substrate/Enable only.
+    std::unique_ptr<Substrate<dim>>         substrate;
     Output<dim>                             output;
     Checkpoint<dim>                         checkpoint;
-    /// Every field, for the life cycle (FieldBase): u and p, c, φ, φ_d.
+    /// Every field, for the life cycle (FieldBase): u and p, c, φ, φ_d, S.
     std::vector<FieldBase<dim> *>           fields;
     /// Every component that reports (Reporter): statistics.csv's columns,
     /// the snapshots' datasets and the checkpoint's scalars, in this order

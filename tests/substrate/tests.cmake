@@ -1,0 +1,50 @@
+# The substrate (Substrate, doc/model.md "Substrate") in a flat biofilm on a
+# wall against closed forms, in balance with no flow: the uptake through the
+# biofilm's top, measured rates 2.00 from Δx = L/8 (errors 7.4e-3, 1.9e-3,
+# 4.6e-4, 1.2e-4). Balance (inflow = consumed) to 2e-13 of the uptake.
+viscofilm_test(substrate_first_order MODE convergence RANKS 2
+  PRM ${S}/substrate/substrate_first_order.prm
+  VARY "Initial global refinement=2,3,4,5"
+  MIN_RATES "substrate_uptake@1.5424441281213e-12=1.95"
+  BOUND "statistics.csv:substrate_inflow-substrate_outflow-substrate_consumed<2e-24"
+        "statistics.csv:substrate_inflow-substrate_outflow-substrate_consumed>-2e-24"
+        "statistics.csv[step>0]:substrate_min>0"
+        "statistics.csv:substrate_max<1.000000000001e-3"
+  NUMDIFF "-a 1e-20 -r 1e-6")
+# Monod kinetics with K_S ≪ S_s in a deep biofilm: J = √(2 D_b q (S_s − K_S
+# ln(1 + S_s/K_S))) (zero order as K_S → 0), measured rates 1.90, 2.00, 2.00
+# (errors 2.6e-3 … 4.3e-5).
+viscofilm_test(substrate_zero_order MODE convergence RANKS 1
+  PRM ${S}/substrate/substrate_zero_order.prm
+  VARY "Initial global refinement=2,3,4,5"
+  MIN_RATES "substrate_uptake@3.1252858523782197e-12=1.85"
+  BOUND "statistics.csv:substrate_inflow-substrate_outflow-substrate_consumed<2e-24"
+        "statistics.csv:substrate_inflow-substrate_outflow-substrate_consumed>-2e-24"
+        "statistics.csv[step>0]:substrate_min>0"
+  NUMDIFF "-a 1e-20 -r 1e-6")
+# The thesis' bulb in its channel flow on an adapted mesh (a refinement at
+# step 3), S = 0.5 at t = 0 and 1 at the inlet, carried in and consumed: the
+# balance amount(t) − amount(0) = inflow − outflow − consumed + remeshed to
+# round-off (measured 2e-15 of the amount), 0 <= S <= 1. The columns against
+# 1 and 2 ranks' own run (regression).
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/substrate_bulb_amr.prm "${_prm_bulb_amr}
+subsection Substrate
+  set Enable              = true
+  set Diffusivity         = 1e-2
+  set Maximum growth rate = 1
+  set Half saturation     = 0.5
+  set Yield               = 0.5
+  set Biomass density     = 1
+  set Initial value       = 0.5
+  set Fixed values        = Inlet: 1
+end
+")
+viscofilm_test(substrate_bulb_amr MODE run RANKS 1 2
+  PRM ${CMAKE_CURRENT_BINARY_DIR}/substrate_bulb_amr.prm
+  REFERENCE ${S}/substrate/substrate_bulb_amr.output
+  COMPARE statistics.csv:step,substrate_amount,substrate_inflow,substrate_consumed,substrate_remeshed,substrate_min,substrate_max
+  BOUND "statistics.csv:substrate_amount-substrate_inflow+substrate_outflow+substrate_consumed-substrate_remeshed<0.507812500001"
+        "statistics.csv:substrate_amount-substrate_inflow+substrate_outflow+substrate_consumed-substrate_remeshed>0.507812499999"
+        "statistics.csv:substrate_min>-1e-14"
+        "statistics.csv:substrate_max<1.000000000001"
+  NUMDIFF "-a 1e-14 -r 1e-8")
