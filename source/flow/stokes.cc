@@ -394,7 +394,10 @@ namespace viscofilm
       {
         if (linear_solver)
           earlier_preconditioner_builds += linear_solver->n_preconditioner_builds();
-        linear_solver = StokesLinearSolver<dim>::create(method, parameters, model, boundary_conditions);
+        linear_solver = StokesLinearSolver<dim>::create(method,
+                                                        parameters,
+                                                        model.viscosity(0.0),
+                                                        boundary_conditions);
         method_in_use = method;
       }
     // The constrained dofs do not change in time, only their values do.

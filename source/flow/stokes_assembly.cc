@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace viscofilm
 {
@@ -124,6 +125,51 @@ namespace viscofilm
     };
 
 
+    /// The strategy's StokesViscosity: the model at φ (of a matrix
+    /// assembly) interpolated to the strategy's points, averaged as the
+    /// assembly averages.
+    template <int dim>
+    class ModelViscosity : public StokesViscosity<dim>
+    {
+    public:
+      ModelViscosity(const Model &                             model,
+                     const typename StokesFlow<dim>::Averaging averaging,
+                     const DoFHandler<dim> &                   volume_fraction_dofs,
+                     const TrilinosWrappers::MPI::Vector &     volume_fraction)
+        : model(model)
+        , averaging(averaging)
+        , volume_fraction_dofs(volume_fraction_dofs)
+        , volume_fraction(volume_fraction)
+      {}
+
+      void
+      evaluate(const FEValues<dim> &values, std::vector<double> &viscosity) override
+      {
+        // One FEValues of φ per quadrature, not one per cell.
+        if (!volume_fraction_values ||
+            !(volume_fraction_values->get_quadrature() == values.get_quadrature()))
+          volume_fraction_values = std::make_unique<FEValues<dim>>(volume_fraction_dofs.get_fe(),
+                                                                   values.get_quadrature(),
+                                                                   update_values);
+        volume_fraction_values->reinit(cell_of(volume_fraction_dofs, values.get_cell()));
+        phi.resize(values.n_quadrature_points);
+        volume_fraction_values->get_function_values(volume_fraction, phi);
+        viscosity.resize(phi.size());
+        for (unsigned int q = 0; q < phi.size(); ++q)
+          viscosity[q] = model.viscosity(phi[q]);
+        StokesFlow<dim>::average_viscosity(averaging, values.get_JxW_values(), viscosity);
+      }
+
+    private:
+      const Model &                             model;
+      const typename StokesFlow<dim>::Averaging averaging;
+      const DoFHandler<dim> &                   volume_fraction_dofs;
+      const TrilinosWrappers::MPI::Vector &     volume_fraction;
+      std::unique_ptr<FEValues<dim>>            volume_fraction_values;
+      std::vector<double>                       phi;
+    };
+
+
     /// A cell's matrix (with η and JxW for the strategy) and right-hand side.
     template <int dim>
     struct AssemblyCopy
@@ -152,7 +198,14 @@ namespace viscofilm
 
     const bool assemble_matrix = !matrix_is_current;
     if (assemble_matrix)
-      linear_solver->start_matrix();
+      {
+        assembled_viscosity =
+          std::make_unique<ModelViscosity<dim>>(model,
+                                                parameters.averaging,
+                                                *coefficients.volume_fraction_dof_handler,
+                                                *coefficients.volume_fraction);
+        linear_solver->start_matrix(*assembled_viscosity);
+      }
     system_rhs = 0;
 
     const Quadrature<dim> quadrature = this->quadrature();
@@ -206,12 +259,11 @@ namespace viscofilm
       std::vector<double> &volume_fraction   = scratch.volume_fraction;
 
       fe_values.reinit(cell);
-      data.cell                 = cell;
-      data.volume_fraction_cell = cell_of(*coefficients.volume_fraction_dof_handler, cell);
-      data.volume_fraction      = coefficients.volume_fraction;
-      data.mass_coefficient     = mass_coefficient;
-      data.JxW                  = fe_values.get_JxW_values();
-      scratch.volume_fraction_values.reinit(data.volume_fraction_cell);
+      data.cell             = cell;
+      data.mass_coefficient = mass_coefficient;
+      data.JxW              = fe_values.get_JxW_values();
+      scratch.volume_fraction_values.reinit(
+        cell_of(*coefficients.volume_fraction_dof_handler, cell));
       scratch.volume_fraction_values.get_function_values(*coefficients.volume_fraction,
                                                          volume_fraction);
       for (unsigned int q = 0; q < n_q_points; ++q)

@@ -251,24 +251,21 @@ namespace viscofilm
      * 2^dim sub-cells of each cell (FE_Q_iso_Q1(2)), for the AMG: only the
      * dofs of a group couple (the sparsity of BlockPreconditioned::reinit()). Two Gauss
      * points per direction and sub-cell integrate it exactly on
-     * parallelograms. η is evaluated at these points from φ (averaged as the
-     * system's); the implicit elastic viscosity, known at the Q2 points only,
-     * enters with its cell mean.
+     * parallelograms. η is the system's at these points (StokesViscosity);
+     * the implicit elastic viscosity, known at the Q2 points only, enters
+     * with its cell mean.
      */
     template <int dim>
     class SubcellAssembler
     {
     public:
       SubcellAssembler(const FiniteElement<dim> &                     pressure_fe,
-                       const FiniteElement<dim> &                     volume_fraction_fe,
                        const std::vector<std::vector<unsigned int>> &groups)
         : fe(FE_Q_iso_Q1<dim>(2), dim, pressure_fe, 1)
         , quadrature(QGauss<1>(2), 2)
         , values(fe, quadrature, update_values | update_gradients | update_JxW_values)
-        , phi_values(volume_fraction_fe, quadrature, update_values)
         , groups(groups)
         , groups_per_subcell(groups.size() / GeometryInfo<dim>::max_children_per_cell)
-        , volume_fraction(quadrature.size())
         , viscosity(quadrature.size())
         , velocity_index(fe.n_dofs_per_cell(), numbers::invalid_unsigned_int)
         , dof_indices(fe.n_dofs_per_cell())
@@ -292,24 +289,17 @@ namespace viscofilm
           }
       }
 
-      /// The sub-cell matrix of @p cell, whose φ is on @p phi_cell.
+      /// The sub-cell matrix of @p cell.
       void
       add(const typename DoFHandler<dim>::active_cell_iterator &cell,
-          const typename DoFHandler<dim>::active_cell_iterator &phi_cell,
-          const TrilinosWrappers::MPI::Vector &        phi,
-          const double                                 elastic_viscosity,
-          const double                                 mass_coefficient,
-          const Model &                                model,
-          const typename StokesFlow<dim>::Averaging  averaging,
-          const AffineConstraints<double> &            constraints,
-          TrilinosWrappers::SparseMatrix &             matrix)
+          const double                                          elastic_viscosity,
+          const double                                          mass_coefficient,
+          StokesViscosity<dim> &                                system_viscosity,
+          const AffineConstraints<double> &                     constraints,
+          TrilinosWrappers::SparseMatrix &                      matrix)
       {
         values.reinit(typename Triangulation<dim>::cell_iterator(cell));
-        phi_values.reinit(phi_cell);
-        phi_values.get_function_values(phi, volume_fraction);
-        for (unsigned int q = 0; q < quadrature.size(); ++q)
-          viscosity[q] = model.viscosity(volume_fraction[q]);
-        StokesFlow<dim>::average_viscosity(averaging, values.get_JxW_values(), viscosity);
+        system_viscosity.evaluate(values, viscosity);
         const FEValuesExtractors::Vector velocities(0);
         const unsigned int               n = groups[0].size();
         // One matrix for the cell's velocity dofs: entries of dofs in no
@@ -348,11 +338,9 @@ namespace viscofilm
       const FESystem<dim>                           fe;
       const QIterated<dim>                          quadrature;
       FEValues<dim>                                 values;
-      FEValues<dim>                                 phi_values;
       const std::vector<std::vector<unsigned int>> &groups;
       const unsigned int                            groups_per_subcell;
       std::vector<unsigned int>                     subcell_of_point;
-      std::vector<double>                           volume_fraction;
       std::vector<double>                           viscosity;
       /// The cell's velocity dofs (local indices), the position of each
       /// local dof among them, their global indices.
@@ -371,10 +359,10 @@ namespace viscofilm
     {
     public:
       BlockPreconditioned(const typename StokesFlow<dim>::Parameters &parameters,
-                          const Model &                                 model,
+                          const double                                  reference_viscosity,
                           const BoundaryConditions<dim> &               boundary_conditions)
         : parameters(parameters)
-        , model(model)
+        , reference_viscosity(reference_viscosity)
         , boundary_conditions(boundary_conditions)
       {}
 
@@ -391,7 +379,7 @@ namespace viscofilm
              const std::vector<IndexSet> &     relevant_partitioning) override;
 
       void
-      start_matrix() override;
+      start_matrix(StokesViscosity<dim> &viscosity) override;
       void
       add_cell_preconditioner(const FEValues<dim> &   fe_values,
                               StokesCellMatrix<dim> &cell) const override;
@@ -423,7 +411,7 @@ namespace viscofilm
       std::string
       velocity_preconditioner() const override
       {
-        return use_multigrid ? "GMG" : "AMG";
+        return multigrid ? "GMG" : "AMG";
       }
 
     private:
@@ -439,17 +427,11 @@ namespace viscofilm
       static constexpr types::global_dof_index automatic_multigrid_dofs =
         (dim == 2 ? 20000 : 10000);
 
-      bool
-      geometric_multigrid() const
-      {
-        return use_multigrid;
-      }
-
       /// Whether the velocity AMG is built from the Q1 sub-cell matrix.
       bool
       uses_subcell_matrix() const
       {
-        return !geometric_multigrid() && parameters.amg_matrix != AMGMatrix::q2;
+        return !multigrid && parameters.amg_matrix != AMGMatrix::q2;
       }
 
       /// Whether a velocity preconditioner was built for this mesh.
@@ -460,7 +442,7 @@ namespace viscofilm
       }
 
       const typename StokesFlow<dim>::Parameters &parameters;
-      const Model &                   model;
+      const double                    reference_viscosity; // ηs(φ = 0)
       const BoundaryConditions<dim> & boundary_conditions;
       const DoFHandler<dim> *         dofs = nullptr;
       /// The pressure shape functions of a cell (local indices).
@@ -474,19 +456,19 @@ namespace viscofilm
       /// build the AMG, so it is assembled only for a build
       /// (assemble_subcell_matrix()): at the end of the matrix assembly that
       /// decides on one (finish_matrix()), or when a solve finds a kept AMG
-      /// too weak; from what that assembly recorded of each cell: its φ cell
-      /// and mean elastic viscosity, φ and the mass coefficient.
+      /// too weak; from what that assembly recorded of each cell (its mean
+      /// elastic viscosity), its η (system_viscosity) and mass coefficient.
       TrilinosWrappers::SparseMatrix         subcell_matrix;
       std::vector<std::vector<unsigned int>> groups;
       struct SubcellSource
       {
-        typename DoFHandler<dim>::active_cell_iterator cell, volume_fraction_cell;
-        double                                elastic_viscosity;
+        typename DoFHandler<dim>::active_cell_iterator cell;
+        double                                         elastic_viscosity;
       };
-      std::vector<SubcellSource>           subcell_sources;
-      const TrilinosWrappers::MPI::Vector *volume_fraction  = nullptr;
-      double                               mass_coefficient = 0;
-      const AffineConstraints<double> *    constraints      = nullptr;
+      std::vector<SubcellSource>        subcell_sources;
+      StokesViscosity<dim> *            system_viscosity = nullptr;
+      double                            mass_coefficient = 0;
+      const AffineConstraints<double> * constraints      = nullptr;
 
       bool preconditioner_is_current      = false; // the velocity AMG
       bool mass_preconditioner_is_current = false; // Jacobi of (1/η) M_p
@@ -507,14 +489,12 @@ namespace viscofilm
       double              viscosity_change        = 0;
 
       std::unique_ptr<TrilinosWrappers::PreconditionAMG>    velocity_amg;
-      /// Velocity preconditioner = GMG: built from the cell viscosities that
-      /// add_cell_matrix() hands it.
+      /// The GMG, built from the cell viscosities that add_cell_matrix()
+      /// hands it, where it serves on this mesh (Velocity preconditioner =
+      /// GMG, or auto from automatic_multigrid_dofs without periodic
+      /// boundaries; decided in reinit()); null where the AMG does.
       std::unique_ptr<VelocityMultigrid<dim>>               multigrid;
       bool                                                  multigrid_built = false;
-      /// GMG on this mesh (Velocity preconditioner = GMG, or auto from
-      /// automatic_multigrid_dofs without periodic boundaries), else AMG;
-      /// decided in reinit().
-      bool use_multigrid = false;
       std::unique_ptr<TrilinosWrappers::PreconditionJacobi> mass_jacobi;
 
       /// The pressure Laplacian L_p (block (1, 1)) of the Schur complement's
@@ -566,11 +546,17 @@ namespace viscofilm
       velocity_amg.reset();
       multigrid_built = false;
       using VelocityPreconditioner = typename StokesFlow<dim>::VelocityPreconditioner;
-      use_multigrid =
-        parameters.velocity_preconditioner == VelocityPreconditioner::gmg ||
-        (parameters.velocity_preconditioner == VelocityPreconditioner::automatic &&
-         !boundary_conditions.has_periodic_pair() && dofs.n_dofs() >= automatic_multigrid_dofs);
-      if (!use_multigrid)
+      if (parameters.velocity_preconditioner == VelocityPreconditioner::gmg ||
+          (parameters.velocity_preconditioner == VelocityPreconditioner::automatic &&
+           !boundary_conditions.has_periodic_pair() &&
+           dofs.n_dofs() >= automatic_multigrid_dofs))
+        {
+          if (!multigrid)
+            multigrid = std::make_unique<VelocityMultigrid<dim>>(boundary_conditions,
+                                                                 parameters.gmg_smoother_degree);
+          multigrid->reinit(dofs, owned_partitioning[0]);
+        }
+      else
         multigrid.reset();
       mass_jacobi.reset();
       laplacian_amg.reset();
@@ -611,7 +597,7 @@ namespace viscofilm
       double                 extent = box.side_length(0);
       for (unsigned int d = 1; d < dim; ++d)
         extent = std::min(extent, box.side_length(d));
-      pressure_scaling = model.viscosity(0.0) / extent;
+      pressure_scaling = reference_viscosity / extent;
 
       continuous_pressure = dofs.get_fe().base_element(1).conforms(FiniteElementData<dim>::H1);
       laplacian_matrix.clear();
@@ -644,14 +630,7 @@ namespace viscofilm
           laplacian_constraints.close();
         }
 
-      if (geometric_multigrid())
-        {
-          if (!multigrid)
-            multigrid = std::make_unique<VelocityMultigrid<dim>>(boundary_conditions,
-                                                                 parameters.gmg_smoother_degree);
-          multigrid->reinit(dofs, owned_partitioning[0]);
-        }
-      else if (parameters.amg_matrix != AMGMatrix::q2)
+      if (uses_subcell_matrix())
         {
           groups = subcell_groups(dofs.get_fe(),
                                   parameters.amg_matrix == AMGMatrix::q1_subcells_by_component ?
@@ -681,8 +660,9 @@ namespace viscofilm
 
     template <int dim>
     void
-    BlockPreconditioned<dim>::start_matrix()
+    BlockPreconditioned<dim>::start_matrix(StokesViscosity<dim> &viscosity)
     {
+      system_viscosity      = &viscosity;
       system_matrix         = 0;
       preconditioner_matrix = 0;
       if (continuous_pressure && !laplacian_amg)
@@ -743,7 +723,7 @@ namespace viscofilm
                                                          laplacian_matrix);
       mass_coefficient = cell.mass_coefficient;
 
-      if (geometric_multigrid())
+      if (multigrid)
         {
           // 2η (the assembly's η holds the implicit elastic viscosity), the
           // level operators' coefficient.
@@ -756,10 +736,8 @@ namespace viscofilm
         {
           subcell_sources.push_back(
             {cell.cell,
-             cell.volume_fraction_cell,
              std::accumulate(cell.elastic_viscosity.begin(), cell.elastic_viscosity.end(), 0.0) /
                cell.elastic_viscosity.size()});
-          volume_fraction   = cell.volume_fraction;
           this->constraints = &constraints;
         }
 
@@ -832,17 +810,12 @@ namespace viscofilm
       subcell_matrix = 0;
       if (!subcell_sources.empty())
         {
-          SubcellAssembler<dim> subcells(dofs->get_fe().base_element(1),
-                                    subcell_sources[0].volume_fraction_cell->get_fe(),
-                                    groups);
+          SubcellAssembler<dim> subcells(dofs->get_fe().base_element(1), groups);
           for (const SubcellSource &source : subcell_sources)
             subcells.add(source.cell,
-                         source.volume_fraction_cell,
-                         *volume_fraction,
                          source.elastic_viscosity,
                          mass_coefficient,
-                         model,
-                         parameters.averaging,
+                         *system_viscosity,
                          *constraints,
                          subcell_matrix);
         }
@@ -857,7 +830,7 @@ namespace viscofilm
       preconditioner_is_current = true;
       rebuild_requested         = false;
       ++n_builds;
-      if (geometric_multigrid())
+      if (multigrid)
         {
           multigrid->build(mass_coefficient);
           multigrid_built = true;
@@ -933,7 +906,7 @@ namespace viscofilm
             };
             try
               {
-                if (geometric_multigrid())
+                if (multigrid)
                   solve_with(*multigrid);
                 else
                   solve_with(*velocity_amg);
@@ -1005,17 +978,19 @@ namespace viscofilm
   template <int dim>
   std::unique_ptr<StokesLinearSolver<dim>>
   make_block_preconditioned_solver(const typename StokesFlow<dim>::Parameters &parameters,
-                                   const Model &                   model,
+                                   const double                    reference_viscosity,
                                    const BoundaryConditions<dim> & boundary_conditions)
   {
-    return std::make_unique<BlockPreconditioned<dim>>(parameters, model, boundary_conditions);
+    return std::make_unique<BlockPreconditioned<dim>>(parameters,
+                                                      reference_viscosity,
+                                                      boundary_conditions);
   }
 
 
 #define INSTANTIATE(dim)                                                 \
   template std::unique_ptr<StokesLinearSolver<dim>>                        \
   make_block_preconditioned_solver<dim>(const typename StokesFlow<dim>::Parameters &, \
-                                        const Model &,                                 \
+                                        const double,                                  \
                                         const BoundaryConditions<dim> &);
   VISCOFILM_FOR_EACH_DIM(INSTANTIATE)
 #undef INSTANTIATE

@@ -6,7 +6,7 @@ namespace viscofilm
   std::unique_ptr<StokesLinearSolver<dim>>
   StokesLinearSolver<dim>::create(const typename StokesFlow<dim>::Method      method,
                                   const typename StokesFlow<dim>::Parameters &parameters,
-                                  const Model &                                 model,
+                                  const double                                  reference_viscosity,
                                   const BoundaryConditions<dim> &               boundary_conditions)
   {
     switch (method)
@@ -16,7 +16,9 @@ namespace viscofilm
         case StokesFlow<dim>::Method::thesis:
           return make_thesis_solver<dim>(parameters);
         case StokesFlow<dim>::Method::block_preconditioned:
-          return make_block_preconditioned_solver<dim>(parameters, model, boundary_conditions);
+          return make_block_preconditioned_solver<dim>(parameters,
+                                                       reference_viscosity,
+                                                       boundary_conditions);
         default:
           Assert(false, ExcInternalError()); // auto: StokesFlow chooses
           return nullptr;

@@ -57,7 +57,7 @@ namespace viscofilm
       }
 
       void
-      start_matrix() override
+      start_matrix(StokesViscosity<dim> &) override
       {
         matrix = 0;
       }

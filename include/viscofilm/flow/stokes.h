@@ -37,6 +37,8 @@ namespace viscofilm
   template <int dim>
   class StokesLinearSolver;
   template <int dim>
+  class StokesViscosity;
+  template <int dim>
   class ElasticStress;
 
   /// The Stokes solve of a time step: its dofs and solutions, the assembly
@@ -365,6 +367,9 @@ namespace viscofilm
     Method                                   method_in_use = Method::automatic;
     /// The velocity AMG builds of the linear solvers Method = auto replaced.
     unsigned int earlier_preconditioner_builds = 0;
+    /// η at the strategy's own points (StokesViscosity), from the model, the
+    /// φ and the averaging of the last matrix assembly.
+    std::unique_ptr<StokesViscosity<dim>> assembled_viscosity;
   };
 } // namespace viscofilm
 

@@ -13,7 +13,6 @@
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <viscofilm/material/model.h>
 #include <viscofilm/flow/stokes.h>
 
 #include <memory>
@@ -31,9 +30,6 @@ namespace viscofilm
   struct StokesCellMatrix
   {
     typename DoFHandler<dim>::active_cell_iterator cell;
-    /// φ on the same cell, for matrices at other quadrature points.
-    typename DoFHandler<dim>::active_cell_iterator volume_fraction_cell;
-    const TrilinosWrappers::MPI::Vector *          volume_fraction = nullptr;
     /// JxW at the quadrature points; η there, the implicit elastic viscosity
     /// included, and that elastic part alone (zero without it).
     std::vector<double> JxW;
@@ -51,16 +47,41 @@ namespace viscofilm
   };
 
 
+  /**
+   * What a strategy knows of the rheology: the system's viscosity η as the
+   * assembly computes it (the model at the interpolated φ, averaged over the
+   * cell as Viscosity averaging says; without the implicit elastic
+   * viscosity), at quadrature points of the strategy's own (the block
+   * preconditioner's Q1 sub-cell matrix). StokesFlow hands one to each
+   * start_matrix(), valid until the next: a strategy may put off its use
+   * until a preconditioner is built.
+   */
+  template <int dim>
+  class StokesViscosity
+  {
+  public:
+    virtual ~StokesViscosity() = default;
+
+    /// η at the quadrature points of @p values, a strategy's FEValues
+    /// reinitialized on a cell of the Stokes mesh; its JxW weigh the
+    /// average. Not thread-safe: it may keep scratch for the quadrature.
+    virtual void
+    evaluate(const FEValues<dim> &values, std::vector<double> &viscosity) = 0;
+  };
+
+
   /// How the Stokes system is solved: one class per Stokes solver/Method.
   template <int dim>
   class StokesLinearSolver
   {
   public:
     /// The strategy of @p method (not automatic: StokesFlow decides).
+    /// @p reference_viscosity: ηs(φ = 0), of the block preconditioner's
+    /// pressure scaling.
     static std::unique_ptr<StokesLinearSolver<dim>>
     create(const typename StokesFlow<dim>::Method      method,
            const typename StokesFlow<dim>::Parameters &parameters,
-           const Model &                                 model,
+           const double                                  reference_viscosity,
            const BoundaryConditions<dim> &               boundary_conditions);
 
     virtual ~StokesLinearSolver() = default;
@@ -78,9 +99,10 @@ namespace viscofilm
            const std::vector<IndexSet> &     owned_partitioning,
            const std::vector<IndexSet> &     relevant_partitioning) = 0;
 
-    /// A new matrix: zero, add every owned cell, finish.
+    /// A new matrix: zero, add every owned cell, finish. @p viscosity: the
+    /// system's η at points of the strategy's own, until the next matrix.
     virtual void
-    start_matrix() = 0;
+    start_matrix(StokesViscosity<dim> &viscosity) = 0;
     /// On an assembly thread, beside the cell matrix: the strategy's own
     /// cell matrices from @p fe_values (Q2–Q1 or P1disc values and JxW on
     /// cell.cell) into @p cell. Reads nothing but its arguments and the
@@ -122,7 +144,7 @@ namespace viscofilm
   template <int dim>
   std::unique_ptr<StokesLinearSolver<dim>>
   make_block_preconditioned_solver(const typename StokesFlow<dim>::Parameters &parameters,
-                                   const Model &                   model,
+                                   const double                    reference_viscosity,
                                    const BoundaryConditions<dim> & boundary_conditions);
   template <int dim>
   std::unique_ptr<StokesLinearSolver<dim>>
