@@ -20,6 +20,7 @@ import matplotlib.pyplot as plt
 
 DESCRIPTIONS = {"u": "horizontal velocity u", "v": "vertical velocity v",
                 "pressure": "pressure p", "volume_fraction": "volume fraction φ",
+                "substrate": "substrate S",
                 "divergence": "divergence ∇·u", "vorticity": "vorticity ∂v/∂x − ∂u/∂y",
                 "inertia": "inertia |u·∇u|"}
 SURFACE_FIELDS = ["u", "v", "pressure"]

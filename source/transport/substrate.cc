@@ -385,6 +385,7 @@ namespace viscofilm
     const unsigned int            max_iterations = 50;
     TrilinosWrappers::MPI::Vector iterate        = current_solution;
     TrilinosWrappers::MPI::Vector distributed(dofs.locally_owned_dofs(), mpi_communicator);
+    TrilinosWrappers::PreconditionAMG preconditioner;
     for (unsigned int l = 1;; ++l)
       {
         assemble(stokes, time_step, iterate, nullptr);
@@ -398,8 +399,10 @@ namespace viscofilm
             SolverControl control(1000, 1e-12 * norm);
             SolverGMRES<TrilinosWrappers::MPI::Vector> solver(
               control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(50));
-            TrilinosWrappers::PreconditionAMG preconditioner;
-            preconditioner.initialize(system_matrix);
+            // Newton changes only the diagonal: the first iteration's AMG
+            // serves the step.
+            if (l == 1)
+              preconditioner.initialize(system_matrix);
             try
               {
                 solver.solve(system_matrix, distributed, system_rhs, preconditioner);
@@ -537,7 +540,7 @@ namespace viscofilm
     statistics.set("substrate_outflow", totals.outflow);
     statistics.set("substrate_consumed", totals.consumed);
     statistics.set("substrate_remeshed", totals.remeshed);
-    statistics.set("substrate_uptake", last_rates.inflow);
+    statistics.set("substrate_inflow_rate", last_rates.inflow);
     double low = std::numeric_limits<double>::max(), high = std::numeric_limits<double>::lowest();
     for (const auto i : dofs.locally_owned_dofs())
       {

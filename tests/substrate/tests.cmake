@@ -5,7 +5,7 @@
 viscofilm_test(substrate_first_order MODE convergence RANKS 2
   PRM ${S}/substrate/substrate_first_order.prm
   VARY "Initial global refinement=2,3,4,5"
-  MIN_RATES "substrate_uptake@1.5424441281213e-12=1.95"
+  MIN_RATES "substrate_inflow_rate@1.5424441281213e-12=1.95"
   BOUND "statistics.csv:substrate_inflow-substrate_outflow-substrate_consumed<2e-24"
         "statistics.csv:substrate_inflow-substrate_outflow-substrate_consumed>-2e-24"
         "statistics.csv[step>0]:substrate_min>0"
@@ -17,7 +17,7 @@ viscofilm_test(substrate_first_order MODE convergence RANKS 2
 viscofilm_test(substrate_zero_order MODE convergence RANKS 1
   PRM ${S}/substrate/substrate_zero_order.prm
   VARY "Initial global refinement=2,3,4,5"
-  MIN_RATES "substrate_uptake@3.1252858523782197e-12=1.85"
+  MIN_RATES "substrate_inflow_rate@3.1252858523782197e-12=1.85"
   BOUND "statistics.csv:substrate_inflow-substrate_outflow-substrate_consumed<2e-24"
         "statistics.csv:substrate_inflow-substrate_outflow-substrate_consumed>-2e-24"
         "statistics.csv[step>0]:substrate_min>0"
@@ -27,7 +27,7 @@ viscofilm_test(substrate_zero_order MODE convergence RANKS 1
 # balance amount(t) − amount(0) = inflow − outflow − consumed + remeshed to
 # round-off (measured 2e-15 of the amount), 0 <= S <= 1. The columns against
 # 1 and 2 ranks' own run (regression).
-file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/substrate_bulb_amr.prm "${_prm_bulb_amr}
+set(_substrate_bulb "
 subsection Substrate
   set Enable              = true
   set Diffusivity         = 1e-2
@@ -39,6 +39,7 @@ subsection Substrate
   set Fixed values        = Inlet: 1
 end
 ")
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/substrate_bulb_amr.prm "${_prm_bulb_amr}${_substrate_bulb}")
 viscofilm_test(substrate_bulb_amr MODE run RANKS 1 2
   PRM ${CMAKE_CURRENT_BINARY_DIR}/substrate_bulb_amr.prm
   REFERENCE ${S}/substrate/substrate_bulb_amr.output
@@ -48,3 +49,31 @@ viscofilm_test(substrate_bulb_amr MODE run RANKS 1 2
         "statistics.csv:substrate_min>-1e-14"
         "statistics.csv:substrate_max<1.000000000001"
   NUMDIFF "-a 1e-14 -r 1e-8")
+# The same stopped after step 4 (its last checkpoint) and resumed: S and its
+# totals (the checkpoint's state) equal the uninterrupted run's.
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/substrate_restart.prm "${_prm_bulb_amr}${_substrate_bulb}
+subsection Checkpointing
+  set Interval = 2
+end
+")
+viscofilm_test(substrate_restart MODE restart RANKS 2
+  PRM ${CMAKE_CURRENT_BINARY_DIR}/substrate_restart.prm
+  REFERENCE unused
+  NUMDIFF "-a 1e-14 -r 1e-8"
+  COMPARE statistics.csv:step,time,substrate_amount,substrate_inflow,substrate_outflow,substrate_consumed,substrate_remeshed,substrate_min,substrate_max)
+# 3D: the flat first-order biofilm as a slab (φ = 1, L × L × L), S_s on the
+# top, no flow: the same closed form, uptake through a top of area L²:
+# 1.5424441281213e-16.
+file(READ ${S}/substrate/substrate_first_order.prm _prm)
+string(REPLACE "set Lower left corner         = 0, 0" "set Dimension = 3
+  set Lower left corner         = 0, 0, 0" _prm "${_prm}")
+string(REPLACE "set Upper right corner        = 1e-4, 1e-4" "set Upper right corner        = 1e-4, 1e-4, 1e-4" _prm "${_prm}")
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/substrate_first_order_3d.prm "${_prm}")
+viscofilm_test(substrate_first_order_3d MODE convergence RANKS 2
+  PRM ${CMAKE_CURRENT_BINARY_DIR}/substrate_first_order_3d.prm
+  REFERENCE ${S}/substrate/substrate_first_order_3d.output
+  VARY "Initial global refinement=1,2,3"
+  MIN_RATES "substrate_inflow_rate@1.5424441281213e-16=1.9"
+  BOUND "statistics.csv[step>0]:substrate_min>0"
+  NUMDIFF "-a 1e-24 -r 1e-6")
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${S}/substrate/substrate_first_order.prm)

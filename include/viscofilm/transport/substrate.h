@@ -93,7 +93,7 @@ namespace viscofilm
     void
     add_output(DataOut<dim> &data_out) override;
     /// statistics.csv: substrate_amount (Σ_i m_i S_i, m_i the lumped mass),
-    /// _inflow, _outflow, _consumed, _remeshed (Totals), _uptake (the last
+    /// _inflow, _outflow, _consumed, _remeshed (Totals), _inflow_rate (the last
     /// step's inflow rate through the fixed-value boundaries), _min, _max,
     /// _iterations.
     void
