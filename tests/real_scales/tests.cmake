@@ -114,3 +114,11 @@ viscofilm_test(channel_biofilm_si_auto MODE run RANKS 2
   BOUND "statistics.csv:max(stokes_iterations)<0.5" "statistics.csv:max(step)>5.5"
   NUMDIFF "-a 1e-12 -r 1e-6"
   COMPARE statistics.csv:step,time,stokes_iterations,max_velocity,volume_fraction_integral)
+# A diffusion-dominated φ step (k D/Δx² = 6.4e4): ILU stalls, AMG takes over
+# (1000 + 2 iterations, then 3 a step); φ = 1 stays 1 to 1e-9.
+viscofilm_test(volume_fraction_stiff_diffusion MODE run RANKS 1 2
+  PRM ${S}/real_scales/volume_fraction_stiff_diffusion.prm
+  NUMDIFF "-a 1e-9 -r 0"
+  COMPARE statistics.csv:step,volume_fraction_min,volume_fraction_max
+  BOUND "statistics.csv:volume_fraction_min>0.999999999"
+        "statistics.csv:volume_fraction_max<1.000000001")

@@ -205,7 +205,8 @@ namespace viscofilm
     void
     restore_mass(const double mass, const double low, const double high);
 
-    /// system_matrix φ = system_rhs by GMRES, then the constraints.
+    /// system_matrix φ = system_rhs by GMRES (ILU; AMG once ILU has
+    /// stalled), then the constraints.
     unsigned int
     solve();
 
@@ -260,6 +261,8 @@ namespace viscofilm
     /// the master's owner.
     IndexSet                      matrix_columns;
     TrilinosWrappers::MPI::Vector system_rhs;
+    /// Whether ILU stalled in a solve: AMG from then on.
+    bool     diffusion_dominated = false;
     Exchange exchange, old_exchange; // since t = 0; at t_n, for restore_old()
   };
 } // namespace viscofilm
