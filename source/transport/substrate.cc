@@ -2,7 +2,6 @@
 
 #include <deal.II/dofs/dof_tools.h>
 
-#include <deal.II/fe/fe_q_iso_q1.h>
 #include <deal.II/fe/fe_values.h>
 
 #include <deal.II/lac/solver_control.h>
@@ -158,7 +157,7 @@ namespace viscofilm
     , boundary_conditions(boundary_conditions)
     , volume_fraction(volume_fraction)
     , mpi_communicator(triangulation.get_communicator())
-    , fe(2)
+    , fe(1)
   {}
 
 
@@ -218,9 +217,10 @@ namespace viscofilm
   {
     // Lumped mass and discrete upwinding: an M-matrix, so S >= 0; the
     // shape functions sum to one, so the convection's columns sum to the
-    // outflow: S is conserved. Two Gauss points per sub-cell and direction.
-    const QIterated<dim>     quadrature(QGauss<1>(2), 2);
-    const QIterated<dim - 1> face_quadrature(QGauss<1>(2), 2);
+    // outflow: S is conserved; its rows sum to ∫ψ_i ∇·u = 0 (exact with the
+    // Stokes assembly's quadrature): S stays within its data.
+    const QGauss<dim>        quadrature(3);
+    const QGauss<dim - 1>    face_quadrature(3);
     FEValues<dim>            values(this->mapping(),
                          fe,
                          quadrature,
@@ -229,6 +229,10 @@ namespace viscofilm
                                 stokes.dof_handler().get_fe(),
                                 quadrature,
                                 update_values);
+    FEValues<dim>     phi_values(this->mapping(),
+                             volume_fraction.dof_handler().get_fe(),
+                             quadrature,
+                             update_values);
     FEFaceValues<dim> face_values(this->mapping(),
                                   fe,
                                   face_quadrature,
@@ -241,7 +245,8 @@ namespace viscofilm
     const unsigned int                   n_dofs = fe.n_dofs_per_cell();
     FullMatrix<double>                   cell_matrix(n_dofs, n_dofs), outflow(n_dofs, n_dofs);
     Vector<double>                       cell_rhs(n_dofs), mass(n_dofs), residual(n_dofs);
-    std::vector<double>                  phi(n_dofs), s_iterate(n_dofs), s_old(n_dofs), s(n_dofs);
+    std::vector<double> phi(volume_fraction.dof_handler().get_fe().n_dofs_per_cell());
+    std::vector<double> phi_q(quadrature.size()), s_iterate(n_dofs), s_old(n_dofs), s(n_dofs);
     std::vector<Tensor<1, dim>>          velocity(quadrature.size());
     std::vector<Tensor<1, dim>>          face_velocity(face_quadrature.size());
     std::vector<types::global_dof_index> local_dofs(n_dofs);
@@ -265,8 +270,12 @@ namespace viscofilm
           const auto stokes_cell = cell_of(stokes.dof_handler(), cell);
           stokes_values.reinit(stokes_cell);
           stokes_values[velocities].get_function_values(stokes.solution(), velocity);
-          cell_of(volume_fraction.dof_handler(), cell)
-            ->get_dof_values(volume_fraction.solution(), phi.begin(), phi.end());
+          // φ at the quadrature points, and at the vertices, S's nodes: the
+          // first dofs of φ's FE_Q(2), in the order of S's FE_Q(1).
+          const auto phi_cell = cell_of(volume_fraction.dof_handler(), cell);
+          phi_values.reinit(phi_cell);
+          phi_values.get_function_values(volume_fraction.solution(), phi_q);
+          phi_cell->get_dof_values(volume_fraction.solution(), phi.begin(), phi.end());
           cell->get_dof_values(iterate, s_iterate.begin(), s_iterate.end());
           cell->get_dof_values(old_solution, s_old.begin(), s_old.end());
 
@@ -275,10 +284,7 @@ namespace viscofilm
           mass        = 0;
           for (const unsigned int q : values.quadrature_point_indices())
             {
-              double phi_q = 0;
-              for (unsigned int i = 0; i < n_dofs; ++i)
-                phi_q += phi[i] * values.shape_value(i, q);
-              const double diffusivity = parameters.diffusivity_at(phi_q);
+              const double diffusivity = parameters.diffusivity_at(phi_q[q]);
               for (unsigned int i = 0; i < n_dofs; ++i)
                 {
                   mass(i) += values.shape_value(i, q) * values.JxW(q);
@@ -468,7 +474,7 @@ namespace viscofilm
   TrilinosWrappers::MPI::Vector
   Substrate<dim>::lumped_weights() const
   {
-    const QIterated<dim>          quadrature(QGauss<1>(2), 2);
+    const QGauss<dim>             quadrature(2);
     FEValues<dim>                 values(this->mapping(),
                          fe,
                          quadrature,

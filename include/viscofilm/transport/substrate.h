@@ -3,8 +3,8 @@
 // Monod kinetics (doc/model.md, "Substrate"):
 //   ∂S/∂t + ∇·(u S) = ∇·(D(φ) ∇S) − (μmax/Y) ρX φ S/(K_S + S),
 //   D(φ) = D_w (1 − φ) + D_b φ, D_b = ratio × D_w.
-// S ≥ 0 and its balance (amount, inflow, outflow, consumption) holds to the
-// linear solver's tolerance.
+// S stays within the range of its data (>= 0), and its balance (amount,
+// inflow, outflow, consumption) holds to the linear solver's tolerance.
 #ifndef viscofilm_substrate_h
 #define viscofilm_substrate_h
 
@@ -12,7 +12,7 @@
 
 #include <deal.II/distributed/tria.h>
 
-#include <deal.II/fe/fe_q_iso_q1.h>
+#include <deal.II/fe/fe_q.h>
 
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -160,10 +160,12 @@ namespace viscofilm
     const BoundaryConditions<dim> &boundary_conditions;
     const VolumeFraction<dim> &    volume_fraction;
     const MPI_Comm                 mpi_communicator;
-    /// Q1 on the 2^dim sub-cells of the Q2 nodes: its hanging nodes take
-    /// means of two (four) nodes, weights >= 0, which keep S >= 0 on adapted
-    /// meshes (Q2's −1/8 do not).
-    const FE_Q_iso_Q1<dim>         fe;
+    /// Q1: Taylor–Hood's u is divergence-free against exactly these
+    /// functions (the pressure's), so the convection's rows sum to zero and
+    /// S keeps the maximum principle besides its balance (Q1 on the Q2
+    /// nodes' sub-cells rose 4 % above its data next to a biofilm); its
+    /// hanging nodes take means (weights >= 0), which keep S >= 0.
+    const FE_Q<dim>                fe;
     /// Hanging nodes and periodicity only: the balance's residual keeps the
     /// fixed values' rows.
     AffineConstraints<double>      hanging_node_constraints;
