@@ -65,10 +65,12 @@ namespace viscofilm
                       "",
                       Patterns::Anything(),
                       "S on boundaries, as \"Name: value, Name: value\" (names "
-                      "of Boundary conditions), e.g. the inlet's concentration "
-                      "or a bulk value above a biofilm. On every other "
-                      "boundary no diffusive flux; where the flow leaves, S "
-                      "leaves with it.");
+                      "of Boundary conditions, not periodic ones), e.g. the "
+                      "inlet's concentration or a bulk value above a biofilm. "
+                      "Through every other boundary no diffusive flux: where "
+                      "the flow leaves, S leaves with it; where it enters, "
+                      "it brings none (list such a boundary here to give its "
+                      "inflow a concentration).");
     prm.declare_entry("Quasi-steady",
                       "false",
                       Patterns::Bool(),
@@ -110,6 +112,10 @@ namespace viscofilm
         const types::boundary_id id = boundary_conditions.id(parts[0], "Substrate/Fixed values");
         check_input(fixed_values.count(id) == 0,
                     "Substrate/Fixed values: \"" + parts[0] + "\" is listed twice");
+        check_input(boundary_conditions.boundary(id).type !=
+                      BoundaryConditions<dim>::Type::periodic,
+                    "Substrate/Fixed values: \"" + parts[0] +
+                      "\" is periodic; name boundaries that are not");
         double value = 0;
         try
           {
@@ -215,10 +221,11 @@ namespace viscofilm
                            const TrilinosWrappers::MPI::Vector &iterate,
                            Rates *                              rates)
   {
-    // Lumped mass and discrete upwinding: an M-matrix, so S >= 0; the
-    // shape functions sum to one, so the convection's columns sum to the
-    // outflow: S is conserved; its rows sum to ∫ψ_i ∇·u = 0 (exact with the
-    // Stokes assembly's quadrature): S stays within its data.
+    // Discrete upwinding of diffusion and convection, and the lumped mass
+    // and Monod term on the diagonal: an M-matrix, so S >= 0; the shape
+    // functions sum to one, so the convection's columns sum to the outflow:
+    // S is conserved; its rows sum to ∫ψ_i ∇·u = 0 (exact with the Stokes
+    // assembly's quadrature): S stays within its data.
     const QGauss<dim>        quadrature(3);
     const QGauss<dim - 1>    face_quadrature(3);
     FEValues<dim>            values(this->mapping(),
@@ -244,9 +251,15 @@ namespace viscofilm
     const FEValuesExtractors::Vector     velocities(0);
     const unsigned int                   n_dofs = fe.n_dofs_per_cell();
     FullMatrix<double>                   cell_matrix(n_dofs, n_dofs), outflow(n_dofs, n_dofs);
-    Vector<double>                       cell_rhs(n_dofs), mass(n_dofs), residual(n_dofs);
+    Vector<double>                       cell_rhs(n_dofs), residual(n_dofs);
     std::vector<double> phi(volume_fraction.dof_handler().get_fe().n_dofs_per_cell());
-    std::vector<double> phi_q(quadrature.size()), s_iterate(n_dofs), s_old(n_dofs), s(n_dofs);
+    std::vector<double> phi_q(quadrature.size()), s(n_dofs);
+    // The lumped mass of each dof with its hanging nodes' shares condensed,
+    // and φ at S's nodes (the vertices): the mass and the Monod term go on
+    // the diagonal after condensation, which keeps it an M-matrix (a hanging
+    // node's mass condensed onto its masters would couple them positively).
+    const TrilinosWrappers::MPI::Vector weights = lumped_weights();
+    TrilinosWrappers::MPI::Vector       phi_nodes(dofs.locally_owned_dofs(), mpi_communicator);
     std::vector<Tensor<1, dim>>          velocity(quadrature.size());
     std::vector<Tensor<1, dim>>          face_velocity(face_quadrature.size());
     std::vector<types::global_dof_index> local_dofs(n_dofs);
@@ -276,18 +289,18 @@ namespace viscofilm
           phi_values.reinit(phi_cell);
           phi_values.get_function_values(volume_fraction.solution(), phi_q);
           phi_cell->get_dof_values(volume_fraction.solution(), phi.begin(), phi.end());
-          cell->get_dof_values(iterate, s_iterate.begin(), s_iterate.end());
-          cell->get_dof_values(old_solution, s_old.begin(), s_old.end());
+          cell->get_dof_indices(local_dofs);
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            if (dofs.locally_owned_dofs().is_element(local_dofs[i]))
+              phi_nodes[local_dofs[i]] = phi[i];
 
           cell_matrix = 0;
           outflow     = 0;
-          mass        = 0;
           for (const unsigned int q : values.quadrature_point_indices())
             {
               const double diffusivity = parameters.diffusivity_at(phi_q[q]);
               for (unsigned int i = 0; i < n_dofs; ++i)
                 {
-                  mass(i) += values.shape_value(i, q) * values.JxW(q);
                   const double advected = velocity[q] * values.shape_grad(i, q);
                   for (unsigned int j = 0; j < n_dofs; ++j)
                     cell_matrix(i, j) +=
@@ -330,36 +343,19 @@ namespace viscofilm
                 cell_matrix(i, i) += d;
                 cell_matrix(j, j) += d;
               }
-          if (rates)
-            cell->get_dof_values(current_solution, s.begin(), s.end());
-          // Lumped mass and Monod consumption r(S) = (μmax/Y) ρX φ S/(K_S +
-          // S), by Newton about the iterate S^l (clipped at 0): r(S) ≈ r(S^l)
-          // + r'(S^l)(S − S^l), r' >= 0 on the diagonal (an M-matrix still).
-          // Picard's S/(K_S + S^l) oscillates where K_S ≪ S (zero order).
-          for (unsigned int i = 0; i < n_dofs; ++i)
-            {
-              const double s_l   = std::max(s_iterate[i], 0.0);
-              const double k_s   = parameters.half_saturation;
-              const double rate  = parameters.uptake_rate() * std::max(phi[i], 0.0);
-              const double r     = rate * s_l / (k_s + s_l);
-              const double slope = rate * k_s / ((k_s + s_l) * (k_s + s_l));
-              cell_matrix(i, i) += mass(i) * (mass_factor + slope);
-              cell_rhs(i) = mass(i) * (mass_factor * s_old[i] + slope * s_l - r);
-              if (rates)
-                rates->consumed += mass(i) * (r + slope * (s[i] - s_l));
-            }
-          cell->get_dof_indices(local_dofs);
           if (!rates)
             {
+              cell_rhs = 0;
               constraints.distribute_local_to_global(
                 cell_matrix, cell_rhs, local_dofs, system_matrix, system_rhs);
               continue;
             }
           // The balance: what enters through the fixed values is their rows'
           // residual; what leaves, Σ_ij outflow_ij S_j.
+          cell->get_dof_values(current_solution, s.begin(), s.end());
           for (unsigned int i = 0; i < n_dofs; ++i)
             {
-              residual(i) = -cell_rhs(i);
+              residual(i) = 0;
               for (unsigned int j = 0; j < n_dofs; ++j)
                 {
                   residual(i) += cell_matrix(i, j) * s[j];
@@ -367,6 +363,33 @@ namespace viscofilm
                 }
             }
           hanging_node_constraints.distribute_local_to_global(residual, local_dofs, full_residual);
+        }
+    phi_nodes.compress(VectorOperation::insert);
+    // Lumped mass and Monod consumption r(S) = (μmax/Y) ρX φ S/(K_S + S), by
+    // Newton about the iterate S^l (clipped at 0): r(S) ≈ r(S^l) + r'(S^l)(S
+    // − S^l), r' >= 0 on the diagonal. Picard's S/(K_S + S^l) oscillates
+    // where K_S ≪ S (zero order).
+    for (const auto i : dofs.locally_owned_dofs())
+      if (!hanging_node_constraints.is_constrained(i))
+        {
+          const double s_l   = std::max(static_cast<double>(iterate[i]), 0.0);
+          const double k_s   = parameters.half_saturation;
+          const double rate  = parameters.uptake_rate() * std::clamp(static_cast<double>(phi_nodes[i]), 0.0, 1.0);
+          const double r     = rate * s_l / (k_s + s_l);
+          const double slope = rate * k_s / ((k_s + s_l) * (k_s + s_l));
+          if (!rates)
+            {
+              if (!constraints.is_constrained(i))
+                {
+                  system_matrix.add(i, i, weights[i] * (mass_factor + slope));
+                  system_rhs(i) += weights[i] * (mass_factor * old_solution[i] + slope * s_l - r);
+                }
+              continue;
+            }
+          const double consumed = weights[i] * (r + slope * (current_solution[i] - s_l));
+          rates->consumed += consumed;
+          full_residual(i) +=
+            weights[i] * mass_factor * (current_solution[i] - old_solution[i]) + consumed;
         }
     if (!rates)
       {

@@ -49,6 +49,22 @@ viscofilm_test(substrate_bulb_amr MODE run RANKS 1 2
         "statistics.csv:substrate_min>-1e-14"
         "statistics.csv:substrate_max<1.000000000001"
   NUMDIFF "-a 1e-14 -r 1e-8")
+# A front entering S = 0 on the adapted bulb (refined at steps 3 and 6): S
+# >= 0 behind the refinement edges (measured 0 to 1e-24 at step 7; with the
+# mass condensed per cell onto the hanging nodes' masters −4e-4) and the
+# balance (6e-16).
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/substrate_front_amr.prm "${_prm_bulb_amr}${_substrate_bulb}
+subsection Substrate
+  set Initial value = 0
+end
+")
+viscofilm_test(substrate_front_amr MODE run RANKS 2
+  PRM ${CMAKE_CURRENT_BINARY_DIR}/substrate_front_amr.prm
+  REFERENCE ${S}/substrate/substrate_front_amr.output
+  COMPARE statistics.csv:step,substrate_amount,substrate_inflow,substrate_remeshed
+  BOUND "statistics.csv:substrate_min>-1e-15"
+        "statistics.csv:substrate_max<1.000000000001"
+  NUMDIFF "-a 1e-14 -r 1e-8")
 # The same stopped after step 4 (its last checkpoint) and resumed: S and its
 # totals (the checkpoint's state) equal the uninterrupted run's.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/substrate_restart.prm "${_prm_bulb_amr}${_substrate_bulb}

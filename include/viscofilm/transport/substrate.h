@@ -125,7 +125,8 @@ namespace viscofilm
     };
     /// Rates × k summed since t = 0, and what mesh changes added (the
     /// amount on the new mesh less that on the old): amount(t) − amount(0)
-    /// = inflow − outflow − consumed + remeshed.
+    /// = inflow − outflow − consumed + remeshed (implicit Euler; with
+    /// Quasi-steady each step's inflow = outflow + consumption instead).
     struct Totals : Rates
     {
       double remeshed = 0;
