@@ -282,6 +282,9 @@ namespace viscofilm
           {
             iterations          = e.last_step;
             diffusion_dominated = true;
+            // A diverged ILU leaves no useful start.
+            if (!std::isfinite(distributed.l2_norm()))
+              distributed = current_solution;
           }
       }
     if (diffusion_dominated)
