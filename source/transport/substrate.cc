@@ -196,6 +196,7 @@ namespace viscofilm
       dofs, sparsity, constraints, false, Utilities::MPI::this_mpi_process(mpi_communicator));
     sparsity.compress();
     system_matrix.reinit(sparsity);
+    compute_lumped_mass();
   }
 
 
@@ -254,12 +255,11 @@ namespace viscofilm
     Vector<double>                       cell_rhs(n_dofs), residual(n_dofs);
     std::vector<double> phi(volume_fraction.dof_handler().get_fe().n_dofs_per_cell());
     std::vector<double> phi_q(quadrature.size()), s(n_dofs);
-    // The lumped mass of each dof with its hanging nodes' shares condensed,
-    // and φ at S's nodes (the vertices): the mass and the Monod term go on
-    // the diagonal after condensation, which keeps it an M-matrix (a hanging
-    // node's mass condensed onto its masters would couple them positively).
-    const TrilinosWrappers::MPI::Vector weights = lumped_weights();
-    TrilinosWrappers::MPI::Vector       phi_nodes(dofs.locally_owned_dofs(), mpi_communicator);
+    // φ at S's nodes (the vertices): the mass (lumped_mass, condensed) and
+    // the Monod term go on the diagonal after condensation, which keeps it
+    // an M-matrix (a hanging node's mass condensed onto its masters would
+    // couple them positively).
+    TrilinosWrappers::MPI::Vector phi_nodes(dofs.locally_owned_dofs(), mpi_communicator);
     std::vector<Tensor<1, dim>>          velocity(quadrature.size());
     std::vector<Tensor<1, dim>>          face_velocity(face_quadrature.size());
     std::vector<types::global_dof_index> local_dofs(n_dofs);
@@ -381,15 +381,15 @@ namespace viscofilm
             {
               if (!constraints.is_constrained(i))
                 {
-                  system_matrix.add(i, i, weights[i] * (mass_factor + slope));
-                  system_rhs(i) += weights[i] * (mass_factor * old_solution[i] + slope * s_l - r);
+                  system_matrix.add(i, i, lumped_mass[i] * (mass_factor + slope));
+                  system_rhs(i) += lumped_mass[i] * (mass_factor * old_solution[i] + slope * s_l - r);
                 }
               continue;
             }
-          const double consumed = weights[i] * (r + slope * (current_solution[i] - s_l));
+          const double consumed = lumped_mass[i] * (r + slope * (current_solution[i] - s_l));
           rates->consumed += consumed;
           full_residual(i) +=
-            weights[i] * mass_factor * (current_solution[i] - old_solution[i]) + consumed;
+            lumped_mass[i] * mass_factor * (current_solution[i] - old_solution[i]) + consumed;
         }
     if (!rates)
       {
@@ -494,15 +494,15 @@ namespace viscofilm
 
 
   template <int dim>
-  TrilinosWrappers::MPI::Vector
-  Substrate<dim>::lumped_weights() const
+  void
+  Substrate<dim>::compute_lumped_mass()
   {
     const QGauss<dim>             quadrature(2);
     FEValues<dim>                 values(this->mapping(),
                          fe,
                          quadrature,
                          update_values | update_JxW_values);
-    TrilinosWrappers::MPI::Vector weights(dofs.locally_owned_dofs(), mpi_communicator);
+    lumped_mass.reinit(dofs.locally_owned_dofs(), mpi_communicator);
     Vector<double>                cell_weights(fe.n_dofs_per_cell());
     std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dofs.active_cell_iterators())
@@ -514,10 +514,9 @@ namespace viscofilm
             for (unsigned int i = 0; i < cell_weights.size(); ++i)
               cell_weights(i) += values.shape_value(i, q) * values.JxW(q);
           cell->get_dof_indices(local_dofs);
-          hanging_node_constraints.distribute_local_to_global(cell_weights, local_dofs, weights);
+          hanging_node_constraints.distribute_local_to_global(cell_weights, local_dofs, lumped_mass);
         }
-    weights.compress(VectorOperation::add);
-    return weights;
+    lumped_mass.compress(VectorOperation::add);
   }
 
 
@@ -527,7 +526,7 @@ namespace viscofilm
   {
     TrilinosWrappers::MPI::Vector owned(dofs.locally_owned_dofs(), mpi_communicator);
     owned = current_solution;
-    return lumped_weights() * owned;
+    return lumped_mass * owned;
   }
 
 
@@ -546,7 +545,7 @@ namespace viscofilm
   {
     if (!amount_before_transfer)
       return;
-    totals.remeshed += lumped_weights() * distributed - *amount_before_transfer;
+    totals.remeshed += lumped_mass * distributed - *amount_before_transfer;
     old_totals = totals;
     amount_before_transfer.reset();
   }

@@ -20,7 +20,6 @@
 #include <viscofilm/core/field.h>
 #include <viscofilm/geometry/boundary_conditions.h>
 
-#include <array>
 #include <map>
 #include <optional>
 
@@ -149,9 +148,10 @@ namespace viscofilm
     transferred(TrilinosWrappers::MPI::Vector &distributed) override;
 
     /// The lumped mass m_j of each dof, hanging nodes' shares condensed
-    /// onto their masters: Σ_i m_i S_i = weights · S.
-    TrilinosWrappers::MPI::Vector
-    lumped_weights() const;
+    /// onto their masters (Σ_i m_i S_i = lumped_mass · S): of the mesh only,
+    /// made by setup_dofs().
+    void
+    compute_lumped_mass();
 
     /// Σ_i m_i S_i.
     double
@@ -171,6 +171,7 @@ namespace viscofilm
     /// fixed values' rows.
     AffineConstraints<double>      hanging_node_constraints;
 
+    TrilinosWrappers::MPI::Vector  lumped_mass;
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;
 
