@@ -19,6 +19,7 @@ namespace viscofilm
     DepartureFeet<dim>::Parameters::declare_parameters(prm);
     VolumeFraction<dim>::Parameters::declare_parameters(prm);
     Substrate<dim>::Parameters::declare_parameters(prm);
+    Growth<dim>::Parameters::declare_parameters(prm);
     BiofilmLoads<dim>::Parameters::declare_parameters(prm);
     Detachment<dim>::Parameters::declare_parameters(prm);
     Output<dim>::Parameters::declare_parameters(prm);
@@ -57,6 +58,7 @@ namespace viscofilm
     departure_feet.parse_parameters(prm);
     volume_fraction.parse_parameters(prm);
     substrate.parse_parameters(prm, boundary_conditions);
+    growth.parse_parameters(prm, substrate.enabled, boundary_conditions);
     loads.parse_parameters(prm, boundary_conditions);
     detachment.parse_parameters(prm, boundary_conditions);
     output.parse_parameters(prm);

@@ -113,6 +113,12 @@ namespace viscofilm
                                                      volume_fraction);
         fields.push_back(substrate.get());
         reporters.push_back(substrate.get());
+        if (parameters.growth.enabled)
+          {
+            growth =
+              std::make_unique<Growth<dim>>(parameters.growth, *substrate, volume_fraction);
+            reporters.push_back(growth.get());
+          }
       }
   }
 
@@ -348,7 +354,8 @@ namespace viscofilm
       &volume_fraction.dof_handler(),
       &volume_fraction.solution(),
       &parameters.verification.body_force,
-      &stress};
+      &stress,
+      growth ? growth->expansion() : nullptr};
     {
       TimerOutput::Scope t(*computing_timer, "assemble stokes");
       stokes.assemble(coefficients);
@@ -383,6 +390,9 @@ namespace viscofilm
     const double k = time_step;
     StepReport   report;
 
+    // 0. Growth: the flow's expansion from φ^n and S^n.
+    if (growth)
+      growth->start_step();
     // 1. Departure feet from u^n: c^n there, and u^n for the inertia term.
     const bool viscoelastic = parameters.model.viscoelastic;
     departure_feet.reset_statistics();
@@ -509,7 +519,18 @@ namespace viscofilm
                     << " exceeds Time stepping/Tolerance at Minimum time step, t = "
                     << time + time_step << std::endl;
           }
-        // 4. Release what the accepted step's loads detach (Detachment/Release).
+        // 4. The biomass grows on what the step's substrate consumed.
+        if (growth)
+          {
+            TimerOutput::Scope t(*computing_timer, "growth");
+            const double unplaced = growth->grow(time_step);
+            if (unplaced != 0)
+              pcout << "   Warning: growth could not place " << unplaced
+                    << " of ∫φ within [0, Growth/Maximum volume fraction] at t = "
+                    << time + time_step << " (the fronts have too little room for "
+                    << "one step's growth: shorten the time step)" << std::endl;
+          }
+        // 5. Release what the accepted step's loads detach (Detachment/Release).
         {
           TimerOutput::Scope t(*computing_timer, "detachment");
           detachment.release(departure_feet, time_step, parameters.time_stepping.order);

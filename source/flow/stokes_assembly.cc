@@ -82,6 +82,7 @@ namespace viscofilm
                          update_values | update_normal_vectors |
                            update_quadrature_points | update_JxW_values)
         , volume_fraction(quadrature.size())
+        , expansion(quadrature.size())
         , old_velocity(quadrature.size())
         , older_velocity(quadrature.size()) // zero unless BDF2
         , body_force(quadrature.size(), Vector<double>(dim))
@@ -110,6 +111,7 @@ namespace viscofilm
       FEValues<dim>                        stress_values;
       FEFaceValues<dim>                    fe_face_values;
       std::vector<double>                  volume_fraction;
+      std::vector<double>                  expansion; // ∇·u (growth)
       std::vector<Tensor<1, dim>>          old_velocity;
       std::vector<Tensor<1, dim>>          older_velocity;
       std::vector<Vector<double>>          body_force;
@@ -268,6 +270,9 @@ namespace viscofilm
                                                          volume_fraction);
       for (unsigned int q = 0; q < n_q_points; ++q)
         viscosity[q] = model.viscosity(volume_fraction[q]);
+      if (coefficients.expansion)
+        scratch.volume_fraction_values.get_function_values(*coefficients.expansion,
+                                                           scratch.expansion);
       scratch.stress_values.reinit(cell_of(elastic_stress.dof_handler(), cell));
       scratch.stress_values.get_function_values(elastic_stress.solution(),
                                                 scratch.conformation);
@@ -396,6 +401,11 @@ namespace viscofilm
             }
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
             cell_rhs(i) += (rhs_vector * phi_u[i] - phi_tau * symgrad_phi_u[i]) * JxW;
+          // −(q, ∇·u) = −(q, P/φmax): the volume growth adds.
+          if (coefficients.expansion)
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              if (component[i] == dim)
+                cell_rhs(i) -= phi_p[i] * scratch.expansion[q] * JxW;
         }
       if (need_matrix)
         for (unsigned int i = 0; i < dofs_per_cell; ++i)

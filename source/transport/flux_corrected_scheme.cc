@@ -136,11 +136,12 @@ namespace viscofilm
       // range by 1/8 of a jump. The fixer puts all three right at the
       // fronts, within the free nodes' range: ∫φ + outflow − inflow is
       // kept to round-off (it gained 1.0e-5 of ∫φ over the default case
-      // without).
+      // without), plus k ∫φ^n ∇·u where growth expands the flow.
       this->last_error_estimate = 0;
       VolumeFraction<dim> &phi    = this->phi;
       const double         before = phi.integral();
-      const double         mass   = before - step(stokes, time_step, estimate_error);
+      const double         mass   = before - step(stokes, time_step, estimate_error) +
+                          time_step * phi.expansion_integral();
       const unsigned int   iterations =
         diffusion > 0 ? phi.bounded_diffusion_step(diffusion, time_step) : 0;
       const auto [low, high] = phi.range(true);

@@ -92,11 +92,13 @@ namespace viscofilm
         midpoint = average(stokes.start_of_step_solution(), stokes.solution());
       const TrilinosWrappers::MPI::BlockVector &velocity =
         midpoint_rule ? midpoint : stokes.solution();
-      // The mass balance of the step: M^{n+1} = M^n − k ∫_∂Ω φ^n u·n, and
+      // The mass balance of the step: M^{n+1} = M^n − k ∫_∂Ω φ^n u·n (+ k
+      // ∫φ^n ∇·u where growth expands the flow: the advective form's), and
       // what of it leaves and what enters (the statistics' totals).
       const typename VolumeFraction<dim>::Exchange flux = phi.boundary_flux(stokes_dofs, velocity);
       phi.add_exchange(flux, time_step);
-      const double mass = phi.integral() - time_step * flux.net;
+      const double mass =
+        phi.integral() - time_step * flux.net + time_step * phi.expansion_integral();
       phi.make_constraints(&stokes);
       TrilinosWrappers::MPI::Vector advected, lower, upper;
       if (estimate_error && midpoint_rule)

@@ -687,6 +687,37 @@ namespace viscofilm
 
 
   template <int dim>
+  void
+  VolumeFraction<dim>::set_expansion(const TrilinosWrappers::MPI::Vector *rate)
+  {
+    expansion = 0;
+    if (!rate)
+      return;
+    const QGauss<dim>   quadrature(fe.degree + 1);
+    FEValues<dim>       fe_values(this->mapping(), fe, quadrature, update_values | update_JxW_values);
+    std::vector<double> values(quadrature.size()), rates(quadrature.size());
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(current_solution, values);
+          fe_values.get_function_values(*rate, rates);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            expansion += values[q] * rates[q] * fe_values.JxW(q);
+        }
+    expansion = Utilities::MPI::sum(expansion, mpi_communicator);
+  }
+
+
+  template <int dim>
+  double
+  VolumeFraction<dim>::expansion_integral() const
+  {
+    return expansion;
+  }
+
+
+  template <int dim>
   std::pair<double, double>
   VolumeFraction<dim>::range(const bool free_nodes) const
   {

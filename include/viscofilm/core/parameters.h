@@ -20,6 +20,7 @@
 #include <viscofilm/core/time_stepping.h>
 #include <viscofilm/postprocess/verification.h>
 #include <viscofilm/transport/substrate.h>
+#include <viscofilm/biofilm/growth.h>
 #include <viscofilm/transport/volume_fraction.h>
 
 namespace viscofilm
@@ -53,6 +54,7 @@ namespace viscofilm
     typename DepartureFeet<dim>::Parameters  departure_feet;
     typename VolumeFraction<dim>::Parameters volume_fraction; // Stabilization
     typename Substrate<dim>::Parameters      substrate;
+    typename Growth<dim>::Parameters         growth;
     typename BiofilmLoads<dim>::Parameters   loads; // Forces
     typename Detachment<dim>::Parameters     detachment;
     typename Output<dim>::Parameters output;

@@ -14,6 +14,7 @@
 #include <viscofilm/core/checkpoint.h>
 #include <viscofilm/characteristics/departure_feet.h>
 #include <viscofilm/biofilm/detachment.h>
+#include <viscofilm/biofilm/growth.h>
 #include <viscofilm/biofilm/loads.h>
 #include <viscofilm/postprocess/output.h>
 #include <viscofilm/core/parameters.h>
@@ -144,6 +145,7 @@ namespace viscofilm
     Detachment<dim>                         detachment;
     /// With Substrate/Enable only.
     std::unique_ptr<Substrate<dim>>         substrate;
+    std::unique_ptr<Growth<dim>>            growth; // with the substrate
     Output<dim>                             output;
     Checkpoint<dim>                         checkpoint;
     /// Every field, for the life cycle (FieldBase): u and p, c, φ, φ_d, S.

@@ -159,6 +159,9 @@ namespace viscofilm
       const ParsedExpression<dim> *     body_force; // at time
       /// τ for the term −(s(φ) τ, ∇v) on the right-hand side.
       const ElasticStress<dim> *elastic_stress;
+      /// ∇·u on φ's dofs where growth expands the mixture (Growth); nullptr:
+      /// ∇·u = 0.
+      const TrilinosWrappers::MPI::Vector *expansion;
     };
 
     /// @p order: Time stepping/Order (2: BDF2 for Res ∂u/∂t, and u^{n-1}

@@ -160,6 +160,17 @@ namespace viscofilm
     std::pair<double, double>
     range(const bool free_nodes = false) const;
 
+    /// The flow's divergence ∇·u = @p rate (ghosted, on these dofs; nullptr:
+    /// none) for the coming step, from the biomass' growth: the advective
+    /// transport gains ∫φ ∇·u, which the bounded schemes' mass balance
+    /// adds. Stored with ∫φ^n rate, taken now.
+    void
+    set_expansion(const TrilinosWrappers::MPI::Vector *rate);
+
+    /// ∫φ^n ∇·u of set_expansion() (0 without).
+    double
+    expansion_integral() const;
+
     /** @name The schemes' toolbox (transport_scheme.h) */
     /// @{
 
@@ -263,6 +274,8 @@ namespace viscofilm
     TrilinosWrappers::MPI::Vector system_rhs;
     /// Whether ILU stalled in a solve: AMG from then on.
     bool     diffusion_dominated = false;
+
+    double expansion = 0; // ∫φ^n ∇·u
     Exchange exchange, old_exchange; // since t = 0; at t_n, for restore_old()
   };
 } // namespace viscofilm
