@@ -126,6 +126,16 @@ namespace viscofilm
     evaluate(const CellEvaluation<dim, n> &evaluate_cell) const;
 
   private:
+    /// The domain's bounding box (of every rank's cells, through the
+    /// mapping).
+    BoundingBox<dim>
+    domain_box() const;
+
+    /// The point of the segment @p from (in @p box) → @p to just before it
+    /// leaves @p box; @p to if that is in @p box (its faces included).
+    static Point<dim>
+    clip(const BoundingBox<dim> &box, const Point<dim> &from, const Point<dim> &to);
+
     struct LocalPoint
     {
       typename Triangulation<dim>::active_cell_iterator cell;
