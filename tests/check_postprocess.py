@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Run a small bulb case, draw its figures with postprocess/plot_run.py and
 check them: the figures exist (also plot_pillar.py's close-up and outlines over
-time, selected by time), and the peak speed the script reads from the
+time, selected by time, and plot_growth.py's of the bulb growing on a
+substrate), and the peak speed the script reads from the
 HDF5 snapshot equals max_velocity that the simulator wrote to statistics.csv
 (both at the Q2 nodes), to the 7 digits it prints.
 usage: check_postprocess.py VISCOFILM SOURCE_DIR WORKDIR"""
@@ -48,5 +49,21 @@ print(pillar.stdout, pillar.stderr)
 missing = [f for f in ("close_up.png", "shapes.png") if not os.path.isfile(os.path.join(workdir, f))]
 if pillar.returncode != 0 or missing:
     print("FAILED: plot_pillar.py exited with %d, missing %s" % (pillar.returncode, missing))
+    sys.exit(1)
+with open(os.path.join(workdir, "grow.prm"), "w") as f:
+    f.write("include small.prm\n"
+            "subsection Output\n  set Directory = grow\nend\n"
+            "subsection Substrate\n  set Enable = true\n  set Maximum growth rate = 1\n"
+            "  set Half saturation = 0.5\n  set Biomass density = 1\n  set Initial value = 1\n"
+            "  set Fixed values = Inlet: 1\nend\n"
+            "subsection Growth\n  set Enable = true\n  set Maximum volume fraction = 0.1\nend\n")
+subprocess.run([viscofilm, "grow.prm"], cwd=workdir, check=True, stdout=subprocess.DEVNULL)
+growth = subprocess.run(["/usr/bin/python3", os.path.join(source, "postprocess", "plot_growth.py"),
+                         "grow"], cwd=workdir, capture_output=True, text=True)
+print(growth.stdout, growth.stderr)
+missing = [f for f in ("growth_outlines.png", "growth_statistics.png")
+           if not os.path.isfile(os.path.join(workdir, "grow", "figures", f))]
+if growth.returncode != 0 or missing:
+    print("FAILED: plot_growth.py exited with %d, missing %s" % (growth.returncode, missing))
     sys.exit(1)
 print("PASSED: %d figures; max|u| = %s as in statistics.csv" % (len(figures), match.group(1)))

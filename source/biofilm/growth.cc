@@ -1,6 +1,9 @@
 #include <deal.II/dofs/dof_tools.h>
 
 #include <deal.II/fe/fe.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/numerics/rtree.h>
 
 #include <viscofilm/biofilm/growth.h>
 #include <viscofilm/core/dof_cell.h>
@@ -79,9 +82,11 @@ namespace viscofilm
 
   template <int dim>
   Growth<dim>::Growth(const Parameters &    parameters,
+                      const Biofilm<dim> &  biofilm,
                       const Substrate<dim> &substrate,
                       VolumeFraction<dim> & volume_fraction)
     : parameters(parameters)
+    , biofilm(biofilm)
     , substrate(substrate)
     , volume_fraction(volume_fraction)
   {}
@@ -184,12 +189,25 @@ namespace viscofilm
     volume_fraction.set(distributed);
     relocated = target - volume_fraction.integral();
     // Clipping at φmax and the step's mismatch of expansion and growth
-    // (the Stokes problem's P is that of S^n) go to the fronts; each pass
-    // fills at most the room there is (restore_mass()).
+    // (the Stokes problem's P is that of S^n) go to the biofilm's fronts;
+    // each pass fills at most the room there is (restore_mass()).
+    // Only where there is biofilm (φ >= the interface level): the water's
+    // traces of φ would otherwise take their share and grow, step after
+    // step, into spurious biofilm.
+    const IndexSet &              owned = volume_fraction.dof_handler().locally_owned_dofs();
+    TrilinosWrappers::MPI::Vector lower(owned, distributed.get_mpi_communicator());
+    TrilinosWrappers::MPI::Vector upper(lower);
     const double round_off = 1e-12 * std::abs(target);
     for (unsigned int pass = 0; pass < 10; ++pass)
       {
-        volume_fraction.restore_mass(target, 0, phi_max);
+        for (const auto i : owned)
+          {
+            const double phi = volume_fraction.solution()[i];
+            const bool   water = phi < biofilm.interface_level;
+            lower[i]           = water ? phi : 0.0;
+            upper[i]           = water ? phi : phi_max;
+          }
+        volume_fraction.restore_mass(target, lower, upper);
         unplaced = target - volume_fraction.integral();
         if (std::abs(unplaced) <= round_off)
           break;
@@ -201,6 +219,65 @@ namespace viscofilm
 
 
   template <int dim>
+  std::array<double, 3>
+  Growth<dim>::thickness() const
+  {
+    const DoFHandler<dim> &dofs     = volume_fraction.dof_handler();
+    const Mapping<dim> &   mapping  = volume_fraction.mapping();
+    const MPI_Comm         comm     = volume_fraction.solution().get_mpi_communicator();
+    // Every rank's wall faces: their centres and areas.
+    std::vector<std::pair<Point<dim>, double>> faces;
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary() && biofilm.is_wall(face->boundary_id()))
+            faces.emplace_back(face->center(true), face->measure());
+    std::vector<Point<dim>> centres;
+    std::vector<double>     areas;
+    for (const auto &rank_faces : Utilities::MPI::all_gather(comm, faces))
+      for (const auto &[centre, area] : rank_faces)
+        {
+          centres.push_back(centre);
+          areas.push_back(area);
+        }
+    if (centres.empty())
+      return {{0, 0, 0}};
+    const auto tree = pack_rtree_of_indices(centres);
+
+    const QGauss<dim>   quadrature(dofs.get_fe().degree + 1);
+    FEValues<dim>       values(mapping, dofs.get_fe(), quadrature, update_values | update_JxW_values);
+    std::vector<double> phi(quadrature.size());
+    std::vector<double> column(centres.size(), 0.0); // ∫φ of each face's cells
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          values.reinit(cell);
+          values.get_function_values(volume_fraction.solution(), phi);
+          double biomass = 0;
+          for (const unsigned int q : values.quadrature_point_indices())
+            biomass += phi[q] * values.JxW(q);
+          std::vector<unsigned int> nearest;
+          tree.query(boost::geometry::index::nearest(cell->center(true), 1),
+                     std::back_inserter(nearest));
+          column[nearest[0]] += biomass;
+        }
+    Utilities::MPI::sum(column, comm, column);
+    double area = 0, mean = 0, largest = 0, deviation = 0;
+    for (unsigned int f = 0; f < column.size(); ++f)
+      {
+        column[f] /= parameters.maximum_volume_fraction * areas[f];
+        area += areas[f];
+        mean += areas[f] * column[f];
+        largest = std::max(largest, column[f]);
+      }
+    mean /= area;
+    for (unsigned int f = 0; f < column.size(); ++f)
+      deviation += areas[f] * std::abs(column[f] - mean);
+    return {{mean, largest, mean > 0 ? deviation / (mean * area) : 0.0}};
+  }
+
+
+  template <int dim>
   void
   Growth<dim>::add_statistics(CsvFile &statistics, const double /*time*/) const
   {
@@ -208,6 +285,10 @@ namespace viscofilm
     statistics.set("biomass_decayed", decayed);
     statistics.set("biomass_relocated", relocated);
     statistics.set("biomass_unplaced", unplaced);
+    const auto [mean, largest, roughness] = thickness();
+    statistics.set("biofilm_thickness_mean", mean);
+    statistics.set("biofilm_thickness_max", largest);
+    statistics.set("biofilm_thickness_roughness", roughness);
   }
 
 

@@ -116,7 +116,10 @@ namespace viscofilm
         if (parameters.growth.enabled)
           {
             growth =
-              std::make_unique<Growth<dim>>(parameters.growth, *substrate, volume_fraction);
+              std::make_unique<Growth<dim>>(parameters.growth,
+                                            parameters.detachment.biofilm,
+                                            *substrate,
+                                            volume_fraction);
             reporters.push_back(growth.get());
           }
       }

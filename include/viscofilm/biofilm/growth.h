@@ -14,6 +14,9 @@
 
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <array>
+
+#include <viscofilm/biofilm/biofilm.h>
 #include <viscofilm/core/reporter.h>
 #include <viscofilm/geometry/boundary_conditions.h>
 
@@ -48,7 +51,9 @@ namespace viscofilm
       bool expansion = true;
     };
 
-    Growth(const Parameters &   parameters,
+    /// The thickness is taken on @p biofilm's walls.
+    Growth(const Parameters &    parameters,
+           const Biofilm<dim> &  biofilm,
            const Substrate<dim> &substrate,
            VolumeFraction<dim> & volume_fraction);
 
@@ -75,13 +80,23 @@ namespace viscofilm
     /// statistics.csv: biomass_produced, biomass_decayed (∫ of the volume
     /// fraction since t = 0), biomass_relocated (what the last step put at
     /// the fronts, not where it grew), biomass_unplaced (what it could not
-    /// put within [0, φmax]: a time step too long for the fronts' room).
+    /// put within [0, φmax]: a time step too long for the fronts' room); biofilm_thickness_mean, _max, _roughness
+    /// (thickness()).
     void
     add_statistics(CsvFile &statistics, const double time) const override;
     void
     save_state(CheckpointValues &values) const override;
     void
     load_state(const CheckpointValues &values) override;
+
+    /// The biofilm's thickness on the walls: each cell's ∫φ/φmax goes to
+    /// the wall face nearest its centre, and L_f is face f's share per unit
+    /// of its area (a column's height at φmax: the continuum's COMSTAT
+    /// thickness). Returns the area-weighted mean of L_f, its largest, and
+    /// the roughness Σ_f a_f |L_f − mean| / (mean Σ_f a_f) (0 without
+    /// biofilm or walls).
+    std::array<double, 3>
+    thickness() const;
 
   private:
     /// @p q1 (S's FE_Q(1) dofs, ghosted) interpolated onto φ's FE_Q(2)
@@ -91,6 +106,7 @@ namespace viscofilm
     on_phi_nodes(const TrilinosWrappers::MPI::Vector &q1, const Function &f) const;
 
     const Parameters &     parameters;
+    const Biofilm<dim> &   biofilm;
     const Substrate<dim> & substrate;
     VolumeFraction<dim> &  volume_fraction;
 
