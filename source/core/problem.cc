@@ -477,6 +477,12 @@ namespace viscofilm
     // 3. Order 1: φ^{n+1} with u^{n+1}. The viscosity changes with φ.
     if (!phi_in_loop)
       report.transport_iterations = advance_volume_fraction(k);
+    const double defect = volume_fraction.last_mass_defect();
+    if (std::abs(defect) > 1e-9 * std::abs(volume_fraction.integral()))
+      pcout << "   Warning: φ's transport missed its mass balance by " << defect
+            << " (of ∫φ = " << volume_fraction.integral() << ") at t = " << time
+            << ": the step (CFL " << step_cfl
+            << ") is too long for the room its mass fixer has at the fronts" << std::endl;
     // 4. The substrate with u^{n+1} and φ^{n+1}.
     if (substrate)
       {

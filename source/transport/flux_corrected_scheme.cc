@@ -145,7 +145,7 @@ namespace viscofilm
       const unsigned int   iterations =
         diffusion > 0 ? phi.bounded_diffusion_step(diffusion, time_step) : 0;
       const auto [low, high] = phi.range(true);
-      phi.restore_mass(mass, low, high);
+      this->record_mass_defect(phi.restore_mass(mass, low, high));
       return iterations;
     }
 

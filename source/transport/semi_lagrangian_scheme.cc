@@ -112,7 +112,7 @@ namespace viscofilm
         advect(stokes_dofs, velocity, feet, time_step, advected, lower, upper);
       this->solution()              = advected;
       const unsigned int iterations = phi.bounded_diffusion_step(diffusion, time_step);
-      phi.restore_mass(mass, lower, upper);
+      this->record_mass_defect(phi.restore_mass(mass, lower, upper));
       return iterations;
     }
 

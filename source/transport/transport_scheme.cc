@@ -72,6 +72,14 @@ namespace viscofilm
 
 
   template <int dim>
+  void
+  TransportScheme<dim>::record_mass_defect(const double defect)
+  {
+    phi.mass_defect = defect;
+  }
+
+
+  template <int dim>
   const DoFHandler<dim> &
   TransportScheme<dim>::dofs() const
   {

@@ -446,7 +446,7 @@ namespace viscofilm
 
 
   template <int dim>
-  void
+  double
   VolumeFraction<dim>::restore_mass(const double                    mass,
                                const TrilinosWrappers::MPI::Vector &lower,
                                const TrilinosWrappers::MPI::Vector &upper)
@@ -499,18 +499,19 @@ namespace viscofilm
     distributed.add(lambda, room);
     constraints.distribute(distributed);
     current_solution = distributed;
+    return missing - lambda * available;
   }
 
 
   template <int dim>
-  void
+  double
   VolumeFraction<dim>::restore_mass(const double mass, const double low, const double high)
   {
     TrilinosWrappers::MPI::Vector lower(dofs.locally_owned_dofs(), mpi_communicator);
     TrilinosWrappers::MPI::Vector upper(lower);
     lower = low;
     upper = high;
-    restore_mass(mass, lower, upper);
+    return restore_mass(mass, lower, upper);
   }
 
 
@@ -581,6 +582,7 @@ namespace viscofilm
     const auto [phi_min, phi_max] = range();
     statistics.set("volume_fraction_min", phi_min);
     statistics.set("volume_fraction_max", phi_max);
+    statistics.set("volume_fraction_mass_defect", mass_defect);
     scheme->add_statistics(statistics);
   }
 
@@ -714,6 +716,14 @@ namespace viscofilm
   VolumeFraction<dim>::expansion_integral() const
   {
     return expansion;
+  }
+
+
+  template <int dim>
+  double
+  VolumeFraction<dim>::last_mass_defect() const
+  {
+    return mass_defect;
   }
 
 

@@ -65,6 +65,10 @@ namespace viscofilm
   protected:
     explicit TransportScheme(VolumeFraction<dim> &phi);
 
+    /// What the step's mass fixer could not restore: φ's last_mass_defect().
+    void
+    record_mass_defect(const double defect);
+
     /// φ's vectors, constraints and matrix (VolumeFraction's friend).
     const DoFHandler<dim> &
     dofs() const;

@@ -155,6 +155,12 @@ namespace viscofilm
     double
     integral() const;
 
+    /// What the last transport step's mass fixer could not put back (the
+    /// bounded schemes' ∫φ balance misses it): 0 to round-off unless the
+    /// step is too long for the room at the fronts.
+    double
+    last_mass_defect() const;
+
     /// Smallest and largest nodal value (@p free_nodes: of the nodes no
     /// constraint sets, which a hanging node's interpolant can overshoot).
     std::pair<double, double>
@@ -207,13 +213,14 @@ namespace viscofilm
     /// nodes so that ∫φ = @p mass; |λ| <= 1 keeps φ_i in [l_i, u_i] (l =
     /// @p lower, u = @p upper), so mass goes only where φ is between its
     /// bounds: at fronts. (With |λ| = 1 some mass may still be missing.)
-    void
+    /// Returns what is still missing (mass − ∫φ after).
+    double
     restore_mass(const double                         mass,
                  const TrilinosWrappers::MPI::Vector &lower,
                  const TrilinosWrappers::MPI::Vector &upper);
 
     /// restore_mass() with the same bounds [@p low, @p high] at every node.
-    void
+    double
     restore_mass(const double mass, const double low, const double high);
 
     /// system_matrix φ = system_rhs by GMRES (ILU; AMG once ILU has
@@ -276,6 +283,9 @@ namespace viscofilm
     bool     diffusion_dominated = false;
 
     double expansion = 0; // ∫φ^n ∇·u
+    /// What the last transport step's mass fixer could not restore (a step
+    /// too long for the room at the fronts).
+    double mass_defect = 0;
     Exchange exchange, old_exchange; // since t = 0; at t_n, for restore_old()
   };
 } // namespace viscofilm
