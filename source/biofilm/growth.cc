@@ -125,28 +125,73 @@ namespace viscofilm
 
 
   template <int dim>
+  TrilinosWrappers::MPI::Vector
+  Growth<dim>::monod_growth() const
+  {
+    const auto & kinetics = substrate.kinetics();
+    const double phi_max  = parameters.maximum_volume_fraction;
+    return on_phi_nodes(substrate.solution(), [&](const double phi, const double s) {
+      const double c = std::max(s, 0.0);
+      return kinetics.maximum_growth_rate * std::clamp(phi, 0.0, phi_max) * c /
+             (kinetics.half_saturation + c);
+    });
+  }
+
+
+  template <int dim>
+  double
+  Growth<dim>::integral(const TrilinosWrappers::MPI::Vector &values) const
+  {
+    const DoFHandler<dim> &dofs = volume_fraction.dof_handler();
+    const QGauss<dim>      quadrature(dofs.get_fe().degree + 1);
+    FEValues<dim>          fe_values(volume_fraction.mapping(),
+                            dofs.get_fe(),
+                            quadrature,
+                            update_values | update_JxW_values);
+    std::vector<double> at_points(quadrature.size());
+    double              sum = 0;
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(values, at_points);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            sum += at_points[q] * fe_values.JxW(q);
+        }
+    return Utilities::MPI::sum(sum, values.get_mpi_communicator());
+  }
+
+
+  template <int dim>
+  TrilinosWrappers::MPI::Vector
+  Growth<dim>::ghosted(const TrilinosWrappers::MPI::Vector &owned) const
+  {
+    IndexSet relevant;
+    DoFTools::extract_locally_relevant_dofs(volume_fraction.dof_handler(), relevant);
+    TrilinosWrappers::MPI::Vector result(volume_fraction.dof_handler().locally_owned_dofs(),
+                                         relevant,
+                                         owned.get_mpi_communicator());
+    result = owned;
+    return result;
+  }
+
+
+  template <int dim>
   void
   Growth<dim>::start_step()
   {
     if (!parameters.expansion)
       return;
-    const auto &   kinetics = substrate.kinetics();
-    const double   mu       = kinetics.maximum_growth_rate;
-    const double   k_s      = kinetics.half_saturation;
-    const double   b        = parameters.decay_rate;
-    const double   phi_max  = parameters.maximum_volume_fraction;
-    const TrilinosWrappers::MPI::Vector rate =
-      on_phi_nodes(substrate.solution(), [&](const double phi, const double s) {
-        const double p = std::clamp(phi, 0.0, phi_max);
-        const double c = std::max(s, 0.0);
-        return (mu * c / (k_s + c) - b) * p / phi_max;
-      });
-    IndexSet relevant;
-    DoFTools::extract_locally_relevant_dofs(volume_fraction.dof_handler(), relevant);
-    expansion_rate.reinit(volume_fraction.dof_handler().locally_owned_dofs(),
-                          relevant,
-                          rate.get_mpi_communicator());
-    expansion_rate = rate;
+    // (μmax φ S/(K_S + S) − b φ)/φmax from φ^n and S^n.
+    TrilinosWrappers::MPI::Vector rate = monod_growth();
+    const TrilinosWrappers::MPI::Vector &phi = volume_fraction.solution();
+    for (const auto i : volume_fraction.dof_handler().locally_owned_dofs())
+      rate[i] = (rate[i] - parameters.decay_rate *
+                             std::clamp(static_cast<double>(phi[i]),
+                                        0.0,
+                                        parameters.maximum_volume_fraction)) /
+                parameters.maximum_volume_fraction;
+    expansion_rate = ghosted(rate);
     volume_fraction.set_expansion(&expansion_rate);
   }
 
@@ -179,12 +224,22 @@ namespace viscofilm
     const double target = transported - k * volume_fraction.expansion_integral() +
                           k * growth_rate - k * b * transported;
 
-    const TrilinosWrappers::MPI::Vector grown =
-      on_phi_nodes(substrate.growth_rate(), [&](const double phi, const double g) {
-        const double rate = g - b * phi;
-        const double room = parameters.expansion ? 1 - phi / phi_max : 1.0;
-        return std::clamp(phi + k * rate * room, 0.0, phi_max);
-      });
+    // The Monod growth at φ's nodes, with the step's S and transported φ,
+    // scaled to what the substrate consumed (the two differ by the
+    // interpolation of φ at S's nodes, O(h²)): local where φ is, and the
+    // biomass made is Y/ρX × the consumption to round-off.
+    const TrilinosWrappers::MPI::Vector monod = monod_growth();
+    const double                        made  = integral(ghosted(monod));
+    const double                        scale = made > 0 ? growth_rate / made : 0.0;
+    TrilinosWrappers::MPI::Vector       grown(monod);
+    const TrilinosWrappers::MPI::Vector &phi = volume_fraction.solution();
+    for (const auto i : volume_fraction.dof_handler().locally_owned_dofs())
+      {
+        const double phi_i = phi[i];
+        const double rate  = scale * monod[i] - b * phi_i;
+        const double room  = parameters.expansion ? 1 - phi_i / phi_max : 1.0;
+        grown[i]           = std::clamp(phi_i + k * rate * room, 0.0, phi_max);
+      }
     TrilinosWrappers::MPI::Vector distributed(grown);
     volume_fraction.set(distributed);
     relocated = target - volume_fraction.integral();

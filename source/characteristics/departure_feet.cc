@@ -244,7 +244,10 @@ namespace viscofilm
         // 0.4 s), and where the domain is a box, its face is the boundary.
         const BoundingBox<dim> box = domain_box();
         for (unsigned int j = 0; j < remote_locations.size(); ++j)
-          remote_locations[j] = clip(box, inside[j], remote_locations[j]);
+          {
+            remote_locations[j]     = clip(box, inside[j], remote_locations[j]);
+            located[remote_points[j]] = remote_locations[j];
+          }
         if (!search())
           {
             // A target outside the domain whose walk left this rank's cells
@@ -327,7 +330,9 @@ namespace viscofilm
         if (to[d] > box.upper_bound(d))
           fraction = std::min(fraction, (box.upper_bound(d) - from[d]) / (to[d] - from[d]));
       }
-    if (fraction == 1)
+    // From outside the box (a curved boundary's bulge beyond the mapping's
+    // support points): no clip.
+    if (fraction == 1 || !box.point_inside(from))
       return to;
     // Just inside: a point on a face is another O(cells) search.
     return from + std::max(fraction * (1 - 1e-9), 0.0) * (to - from);

@@ -61,6 +61,13 @@ namespace viscofilm
     growth.parse_parameters(prm, substrate.enabled, boundary_conditions);
     loads.parse_parameters(prm, boundary_conditions);
     detachment.parse_parameters(prm, boundary_conditions);
+    // The growth places its biomass where φ is biofilm (at least the
+    // interface level): it needs room between that and φmax.
+    check_input(!growth.enabled ||
+                  growth.maximum_volume_fraction > detachment.biofilm.interface_level,
+                "Growth/Maximum volume fraction (" + to_text(growth.maximum_volume_fraction) +
+                  ") must exceed Detachment/Interface volume fraction (" +
+                  to_text(detachment.biofilm.interface_level) + ")");
     output.parse_parameters(prm);
     verification.parse_parameters(prm);
     checkpointing.parse_parameters(prm);

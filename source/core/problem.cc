@@ -318,6 +318,8 @@ namespace viscofilm
     volume_fraction.advance_time(); // φ^0: the first step's φ^n
     if (substrate)
       substrate->set_initial_values();
+    if (growth)
+      growth->start_step(); // u^0 below, with Order 2, expands already
     if (adaptive)
       pcout << "Adapted mesh: " << triangulation.n_global_active_cells()
             << " cells, " << stokes.n_dofs() << " Stokes dofs, smallest Δx = "

@@ -270,7 +270,6 @@ namespace viscofilm
       {
         *rates = Rates();
         full_residual.reinit(dofs.locally_owned_dofs(), mpi_communicator);
-        node_consumption.reinit(dofs.locally_owned_dofs(), mpi_communicator);
       }
     else
       {
@@ -388,7 +387,6 @@ namespace viscofilm
               continue;
             }
           const double consumed = lumped_mass[i] * (r + slope * (current_solution[i] - s_l));
-          node_consumption[i]   = consumed;
           rates->consumed += consumed;
           full_residual(i) +=
             lumped_mass[i] * mass_factor * (current_solution[i] - old_solution[i]) + consumed;
@@ -508,24 +506,6 @@ namespace viscofilm
   Substrate<dim>::consumption_rate() const
   {
     return last_rates.consumed;
-  }
-
-
-  template <int dim>
-  TrilinosWrappers::MPI::Vector
-  Substrate<dim>::growth_rate() const
-  {
-    TrilinosWrappers::MPI::Vector rate(dofs.locally_owned_dofs(), mpi_communicator);
-    const double                  factor = parameters.yield / parameters.biomass_density;
-    for (const auto i : dofs.locally_owned_dofs())
-      if (!hanging_node_constraints.is_constrained(i))
-        rate[i] = factor * node_consumption[i] / lumped_mass[i];
-    hanging_node_constraints.distribute(rate);
-    TrilinosWrappers::MPI::Vector ghosted(dofs.locally_owned_dofs(),
-                                          locally_relevant_dofs,
-                                          mpi_communicator);
-    ghosted = rate;
-    return ghosted;
   }
 
 

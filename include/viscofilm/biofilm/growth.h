@@ -69,9 +69,10 @@ namespace viscofilm
 
     /// After an accepted step, whose substrate consumed with the
     /// transported φ: φ += k P (1 − φ/φmax) at φ's nodes (k P without
-    /// expansion), P from the step's consumption, then φ clipped to [0,
-    /// φmax] and ∫φ put to its balance at the fronts: what the transport
-    /// kept, + Y/ρX × the substrate consumed − k b ∫φ. Returns what could
+    /// expansion), P's growth scaled to the step's consumption, then φ
+    /// clipped to [0, φmax] and ∫φ put to its balance at the biofilm's
+    /// fronts: what the transport kept, less its k ∫φ^n ∇·u, + k Y/ρX × the
+    /// substrate's consumption rate − k b ∫φ. Returns what could
     /// not be placed within [0, φmax] beyond round-off (a step too long for
     /// the fronts' room).
     double
@@ -99,6 +100,19 @@ namespace viscofilm
     thickness() const;
 
   private:
+    /// μmax φ S/(K_S + S) at φ's nodes (owned values), φ clipped to [0,
+    /// φmax], S interpolated from its Q1 nodes.
+    TrilinosWrappers::MPI::Vector
+    monod_growth() const;
+
+    /// ∫ of @p values (ghosted, on φ's dofs).
+    double
+    integral(const TrilinosWrappers::MPI::Vector &values) const;
+
+    /// @p owned (φ's dofs) with ghosts.
+    TrilinosWrappers::MPI::Vector
+    ghosted(const TrilinosWrappers::MPI::Vector &owned) const;
+
     /// @p q1 (S's FE_Q(1) dofs, ghosted) interpolated onto φ's FE_Q(2)
     /// nodes (exact: Q1 ⊂ Q2), each value passed with φ there through @p f.
     template <typename Function>

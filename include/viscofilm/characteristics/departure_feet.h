@@ -131,8 +131,9 @@ namespace viscofilm
     BoundingBox<dim>
     domain_box() const;
 
-    /// The point of the segment @p from (in @p box) → @p to just before it
-    /// leaves @p box; @p to if that is in @p box (its faces included).
+    /// The point of the segment @p from → @p to just before it leaves @p
+    /// box; @p to if that is in @p box (its faces included) or @p from is
+    /// not.
     static Point<dim>
     clip(const BoundingBox<dim> &box, const Point<dim> &from, const Point<dim> &to);
 

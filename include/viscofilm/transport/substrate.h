@@ -97,13 +97,6 @@ namespace viscofilm
     double
     consumption_rate() const;
 
-    /// The biomass' growth rate that consumption makes, as a volume fraction
-    /// per time at S's nodes: (Y/ρX) c_i/m_i = μmax φ_i S_i/(K_S + S_i),
-    /// hanging nodes interpolated; ghosted. Its integral, Σ_i m_i G_i, is
-    /// (Y/ρX) consumption_rate() to round-off.
-    TrilinosWrappers::MPI::Vector
-    growth_rate() const;
-
     /// The dataset "substrate".
     void
     add_output(DataOut<dim> &data_out) override;
@@ -188,8 +181,6 @@ namespace viscofilm
     AffineConstraints<double>      hanging_node_constraints;
 
     TrilinosWrappers::MPI::Vector  lumped_mass;
-    /// c_i of the last step (owned; 0 at hanging nodes).
-    TrilinosWrappers::MPI::Vector  node_consumption;
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;
 
