@@ -139,30 +139,6 @@ namespace viscofilm
 
 
   template <int dim>
-  double
-  Growth<dim>::integral(const TrilinosWrappers::MPI::Vector &values) const
-  {
-    const DoFHandler<dim> &dofs = volume_fraction.dof_handler();
-    const QGauss<dim>      quadrature(dofs.get_fe().degree + 1);
-    FEValues<dim>          fe_values(volume_fraction.mapping(),
-                            dofs.get_fe(),
-                            quadrature,
-                            update_values | update_JxW_values);
-    std::vector<double> at_points(quadrature.size());
-    double              sum = 0;
-    for (const auto &cell : dofs.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values.get_function_values(values, at_points);
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            sum += at_points[q] * fe_values.JxW(q);
-        }
-    return Utilities::MPI::sum(sum, values.get_mpi_communicator());
-  }
-
-
-  template <int dim>
   TrilinosWrappers::MPI::Vector
   Growth<dim>::ghosted(const TrilinosWrappers::MPI::Vector &owned) const
   {
@@ -229,7 +205,7 @@ namespace viscofilm
     // interpolation of φ at S's nodes, O(h²)): local where φ is, and the
     // biomass made is Y/ρX × the consumption to round-off.
     const TrilinosWrappers::MPI::Vector monod = monod_growth();
-    const double                        made  = integral(ghosted(monod));
+    const double made = volume_fraction.integral_of(ghosted(monod));
     const double                        scale = made > 0 ? growth_rate / made : 0.0;
     TrilinosWrappers::MPI::Vector       grown(monod);
     const TrilinosWrappers::MPI::Vector &phi = volume_fraction.solution();

@@ -672,6 +672,14 @@ namespace viscofilm
   double
   VolumeFraction<dim>::integral() const
   {
+    return integral_of(current_solution);
+  }
+
+
+  template <int dim>
+  double
+  VolumeFraction<dim>::integral_of(const TrilinosWrappers::MPI::Vector &values_on_dofs) const
+  {
     const QGauss<dim>     quadrature(fe.degree + 1);
     FEValues<dim> fe_values(this->mapping(), fe, quadrature, update_values | update_JxW_values);
     std::vector<double> values(quadrature.size());
@@ -680,7 +688,7 @@ namespace viscofilm
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
-          fe_values.get_function_values(current_solution, values);
+          fe_values.get_function_values(values_on_dofs, values);
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             sum += values[q] * fe_values.JxW(q);
         }

@@ -105,10 +105,6 @@ namespace viscofilm
     TrilinosWrappers::MPI::Vector
     monod_growth() const;
 
-    /// ∫ of @p values (ghosted, on φ's dofs).
-    double
-    integral(const TrilinosWrappers::MPI::Vector &values) const;
-
     /// @p owned (φ's dofs) with ghosts.
     TrilinosWrappers::MPI::Vector
     ghosted(const TrilinosWrappers::MPI::Vector &owned) const;

@@ -155,6 +155,10 @@ namespace viscofilm
     double
     integral() const;
 
+    /// ∫_Ω of @p values (ghosted, on these dofs).
+    double
+    integral_of(const TrilinosWrappers::MPI::Vector &values) const;
+
     /// What the last transport step's mass fixer could not put back (the
     /// bounded schemes' ∫φ balance misses it): 0 to round-off unless the
     /// step is too long for the room at the fronts.
