@@ -253,13 +253,17 @@ namespace viscofilm
     const unsigned int                   n_dofs = fe.n_dofs_per_cell();
     FullMatrix<double>                   cell_matrix(n_dofs, n_dofs), outflow(n_dofs, n_dofs);
     Vector<double>                       cell_rhs(n_dofs), residual(n_dofs);
-    std::vector<double> phi(volume_fraction.dof_handler().get_fe().n_dofs_per_cell());
     std::vector<double> phi_q(quadrature.size()), s(n_dofs);
-    // φ at S's nodes (the vertices): the mass (lumped_mass, condensed) and
-    // the Monod term go on the diagonal after condensation, which keeps it
-    // an M-matrix (a hanging node's mass condensed onto its masters would
+    // The biomass each node consumes with, b_i = ∫ψ_i φ, clipped to [0,
+    // m_i] (Σ_i b_i = ∫φ where no clip acts, so the consumption is that of
+    // the biomass there is on any mesh; φ clipped at the quadrature points
+    // instead counted the Q2 interpolant's undershoots at a sharp front,
+    // 0.25 % of the thesis' bulb), condensed like the lumped mass: the mass and the Monod
+    // term go on the diagonal after condensation, which keeps it an
+    // M-matrix (a hanging node's mass condensed onto its masters would
     // couple them positively).
-    TrilinosWrappers::MPI::Vector phi_nodes(dofs.locally_owned_dofs(), mpi_communicator);
+    TrilinosWrappers::MPI::Vector biomass(dofs.locally_owned_dofs(), mpi_communicator);
+    Vector<double>                cell_biomass(n_dofs);
     std::vector<Tensor<1, dim>>          velocity(quadrature.size());
     std::vector<Tensor<1, dim>>          face_velocity(face_quadrature.size());
     std::vector<types::global_dof_index> local_dofs(n_dofs);
@@ -283,16 +287,14 @@ namespace viscofilm
           const auto stokes_cell = cell_of(stokes.dof_handler(), cell);
           stokes_values.reinit(stokes_cell);
           stokes_values[velocities].get_function_values(stokes.solution(), velocity);
-          // φ at the quadrature points, and at the vertices, S's nodes: the
-          // first dofs of φ's FE_Q(2), in the order of S's FE_Q(1).
-          const auto phi_cell = cell_of(volume_fraction.dof_handler(), cell);
-          phi_values.reinit(phi_cell);
+          phi_values.reinit(cell_of(volume_fraction.dof_handler(), cell));
           phi_values.get_function_values(volume_fraction.solution(), phi_q);
-          phi_cell->get_dof_values(volume_fraction.solution(), phi.begin(), phi.end());
           cell->get_dof_indices(local_dofs);
-          for (unsigned int i = 0; i < n_dofs; ++i)
-            if (dofs.locally_owned_dofs().is_element(local_dofs[i]))
-              phi_nodes[local_dofs[i]] = phi[i];
+          cell_biomass = 0;
+          for (const unsigned int q : values.quadrature_point_indices())
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              cell_biomass(i) += values.shape_value(i, q) * phi_q[q] * values.JxW(q);
+          hanging_node_constraints.distribute_local_to_global(cell_biomass, local_dofs, biomass);
 
           cell_matrix = 0;
           outflow     = 0;
@@ -364,29 +366,30 @@ namespace viscofilm
             }
           hanging_node_constraints.distribute_local_to_global(residual, local_dofs, full_residual);
         }
-    phi_nodes.compress(VectorOperation::insert);
-    // Lumped mass and Monod consumption r(S) = (μmax/Y) ρX φ S/(K_S + S), by
-    // Newton about the iterate S^l (clipped at 0): r(S) ≈ r(S^l) + r'(S^l)(S
-    // − S^l), r' >= 0 on the diagonal. Picard's S/(K_S + S^l) oscillates
+    biomass.compress(VectorOperation::add);
+    // Lumped mass and Monod consumption r_i(S) = (μmax/Y) ρX b_i S/(K_S + S),
+    // by Newton about the iterate S^l (clipped at 0): r(S) ≈ r(S^l) +
+    // r'(S^l)(S − S^l), r' >= 0 on the diagonal. Picard's S/(K_S + S^l) oscillates
     // where K_S ≪ S (zero order).
     for (const auto i : dofs.locally_owned_dofs())
       if (!hanging_node_constraints.is_constrained(i))
         {
           const double s_l   = std::max(static_cast<double>(iterate[i]), 0.0);
           const double k_s   = parameters.half_saturation;
-          const double rate  = parameters.uptake_rate() * std::clamp(static_cast<double>(phi_nodes[i]), 0.0, 1.0);
+          const double rate =
+            parameters.uptake_rate() * std::clamp(static_cast<double>(biomass[i]), 0.0, static_cast<double>(lumped_mass[i]));
           const double r     = rate * s_l / (k_s + s_l);
           const double slope = rate * k_s / ((k_s + s_l) * (k_s + s_l));
           if (!rates)
             {
               if (!constraints.is_constrained(i))
                 {
-                  system_matrix.add(i, i, lumped_mass[i] * (mass_factor + slope));
-                  system_rhs(i) += lumped_mass[i] * (mass_factor * old_solution[i] + slope * s_l - r);
+                  system_matrix.add(i, i, lumped_mass[i] * mass_factor + slope);
+                  system_rhs(i) += lumped_mass[i] * mass_factor * old_solution[i] + slope * s_l - r;
                 }
               continue;
             }
-          const double consumed = lumped_mass[i] * (r + slope * (current_solution[i] - s_l));
+          const double consumed = r + slope * (current_solution[i] - s_l);
           rates->consumed += consumed;
           full_residual(i) +=
             lumped_mass[i] * mass_factor * (current_solution[i] - old_solution[i]) + consumed;

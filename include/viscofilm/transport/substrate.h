@@ -92,8 +92,8 @@ namespace viscofilm
     const Parameters &
     kinetics() const;
 
-    /// The last step's consumption rate, Σ_i c_i (c_i the Monod term at node
-    /// i times its lumped mass).
+    /// The last step's consumption rate, Σ_i c_i (c_i the Monod term of
+    /// node i with its biomass ∫ψ_i φ).
     double
     consumption_rate() const;
 
