@@ -190,7 +190,7 @@ namespace viscofilm
     AssertThrow(k * b < 1,
                 ExcMessage("Growth/Decay rate × the time step is " + to_text(k * b) +
                            ": it must be < 1 for φ to stay >= 0; shorten Time "
-                           "stepping/Maximum time step"));
+                           "stepping/Time step"));
     // The step's balance: the transport's ∫φ less what its advective form
     // gained from ∇·u (the expansion term below takes it back), plus the
     // growth the substrate paid for, less decay.
@@ -201,9 +201,10 @@ namespace viscofilm
                           k * growth_rate - k * b * transported;
 
     // The Monod growth at φ's nodes, with the step's S and transported φ,
-    // scaled to what the substrate consumed (the two differ by the
-    // interpolation of φ at S's nodes, O(h²)): local where φ is, and the
-    // biomass made is Y/ρX × the consumption to round-off.
+    // scaled to what the substrate consumed (the two differ by S's
+    // interpolation onto φ's nodes and by the undershoots the substrate
+    // clips): local where φ is, and the biomass made is Y/ρX × the
+    // consumption to round-off.
     const TrilinosWrappers::MPI::Vector monod = monod_growth();
     const double made = volume_fraction.integral_of(ghosted(monod));
     const double                        scale = made > 0 ? growth_rate / made : 0.0;
