@@ -1,7 +1,7 @@
-#include <deal.II/dofs/dof_tools.h>
-
 #include <deal.II/fe/fe.h>
 #include <deal.II/fe/fe_values.h>
+
+#include <deal.II/lac/full_matrix.h>
 
 #include <deal.II/numerics/rtree.h>
 
@@ -105,6 +105,11 @@ namespace viscofilm
     TrilinosWrappers::MPI::Vector distributed(owned, phi.get_mpi_communicator());
     std::vector<types::global_dof_index> local_dofs(phi_fe.n_dofs_per_cell());
     Vector<double>                       q1_values(q1_fe.n_dofs_per_cell());
+    // The Q1 shape functions at φ's support points, the same on every cell.
+    FullMatrix<double> interpolation(phi_fe.n_dofs_per_cell(), q1_fe.n_dofs_per_cell());
+    for (unsigned int j = 0; j < interpolation.m(); ++j)
+      for (unsigned int v = 0; v < interpolation.n(); ++v)
+        interpolation(j, v) = q1_fe.shape_value(v, phi_fe.get_unit_support_points()[j]);
     for (const auto &cell : phi_dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -115,8 +120,7 @@ namespace viscofilm
               {
                 double value = 0;
                 for (unsigned int v = 0; v < q1_values.size(); ++v)
-                  value +=
-                    q1_values(v) * q1_fe.shape_value(v, phi_fe.get_unit_support_points()[j]);
+                  value += interpolation(j, v) * q1_values(v);
                 distributed[local_dofs[j]] = f(phi[local_dofs[j]], value);
               }
         }
@@ -142,11 +146,8 @@ namespace viscofilm
   TrilinosWrappers::MPI::Vector
   Growth<dim>::ghosted(const TrilinosWrappers::MPI::Vector &owned) const
   {
-    IndexSet relevant;
-    DoFTools::extract_locally_relevant_dofs(volume_fraction.dof_handler(), relevant);
-    TrilinosWrappers::MPI::Vector result(volume_fraction.dof_handler().locally_owned_dofs(),
-                                         relevant,
-                                         owned.get_mpi_communicator());
+    // φ's own layout: owned and relevant dofs.
+    TrilinosWrappers::MPI::Vector result(volume_fraction.solution());
     result = owned;
     return result;
   }

@@ -480,7 +480,7 @@ namespace viscofilm
     if (!phi_in_loop)
       report.transport_iterations = advance_volume_fraction(k);
     const double defect = volume_fraction.last_mass_defect();
-    if (std::abs(defect) > 1e-9 * std::abs(volume_fraction.integral()))
+    if (defect != 0 && std::abs(defect) > 1e-9 * std::abs(volume_fraction.integral()))
       pcout << "   Warning: φ's transport missed its mass balance by " << defect
             << " (of ∫φ = " << volume_fraction.integral() << ") at t = " << time
             << ": the step (CFL " << step_cfl

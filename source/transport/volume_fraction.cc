@@ -678,19 +678,22 @@ namespace viscofilm
 
   template <int dim>
   double
-  VolumeFraction<dim>::integral_of(const TrilinosWrappers::MPI::Vector &values_on_dofs) const
+  VolumeFraction<dim>::integral_of(const TrilinosWrappers::MPI::Vector &values_on_dofs,
+                                   const TrilinosWrappers::MPI::Vector *weight) const
   {
     const QGauss<dim>     quadrature(fe.degree + 1);
     FEValues<dim> fe_values(this->mapping(), fe, quadrature, update_values | update_JxW_values);
-    std::vector<double> values(quadrature.size());
+    std::vector<double> values(quadrature.size()), weights(quadrature.size(), 1.0);
     double              sum = 0;
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
           fe_values.get_function_values(values_on_dofs, values);
+          if (weight)
+            fe_values.get_function_values(*weight, weights);
           for (unsigned int q = 0; q < quadrature.size(); ++q)
-            sum += values[q] * fe_values.JxW(q);
+            sum += values[q] * weights[q] * fe_values.JxW(q);
         }
     return Utilities::MPI::sum(sum, mpi_communicator);
   }
@@ -700,22 +703,7 @@ namespace viscofilm
   void
   VolumeFraction<dim>::set_expansion(const TrilinosWrappers::MPI::Vector *rate)
   {
-    expansion = 0;
-    if (!rate)
-      return;
-    const QGauss<dim>   quadrature(fe.degree + 1);
-    FEValues<dim>       fe_values(this->mapping(), fe, quadrature, update_values | update_JxW_values);
-    std::vector<double> values(quadrature.size()), rates(quadrature.size());
-    for (const auto &cell : dofs.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values.get_function_values(current_solution, values);
-          fe_values.get_function_values(*rate, rates);
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            expansion += values[q] * rates[q] * fe_values.JxW(q);
-        }
-    expansion = Utilities::MPI::sum(expansion, mpi_communicator);
+    expansion = rate ? integral_of(current_solution, rate) : 0.0;
   }
 
 

@@ -155,9 +155,11 @@ namespace viscofilm
     double
     integral() const;
 
-    /// ∫_Ω of @p values (ghosted, on these dofs).
+    /// ∫_Ω of @p values (ghosted, on these dofs), times @p weight (the
+    /// same) if given.
     double
-    integral_of(const TrilinosWrappers::MPI::Vector &values) const;
+    integral_of(const TrilinosWrappers::MPI::Vector &values,
+                const TrilinosWrappers::MPI::Vector *weight = nullptr) const;
 
     /// What the last transport step's mass fixer could not put back (the
     /// bounded schemes' ∫φ balance misses it): 0 to round-off unless the
