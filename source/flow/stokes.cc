@@ -226,6 +226,18 @@ namespace viscofilm
                       "Velocity preconditioner = GMG: the degree of the "
                       "Chebyshev smoother (matrix-vector products per "
                       "smoothing) on each level, >= 1.");
+    prm.declare_entry("Interface solve viscosity ratio",
+                      "1000",
+                      Patterns::Double(0),
+                      "Where the viscosity jumps (a biofilm in water), the "
+                      "velocity preconditioner adds an exact solve (a sparse LU "
+                      "with the Direct solver) on the dofs along the edge of the "
+                      "cells whose viscosity exceeds this multiple of the "
+                      "water's (φ = 0), before and after each multigrid cycle: "
+                      "multigrid alone loses its robustness at such jumps. It "
+                      "makes 2D solves at ratios up to 1e6 converge, not yet 3D "
+                      "ones (doc/numerics-stokes.md, \"Sharp viscosity "
+                      "contrasts\"). 0: off.");
     prm.declare_entry("Velocity inner tolerance",
                       "1e-2",
                       Patterns::Double(0, 1),
@@ -325,6 +337,7 @@ namespace viscofilm
                                             VelocityPreconditioner::automatic);
     gmg_smoother_degree       = prm.get_integer("GMG smoother degree");
     velocity_inner_tolerance  = prm.get_double("Velocity inner tolerance");
+    interface_solve_ratio     = prm.get_double("Interface solve viscosity ratio");
     velocity_inner_iterations = prm.get_integer("Velocity inner iterations");
     schur_inner_tolerance     = prm.get_double("Schur inner tolerance");
     schur_inner_iterations    = prm.get_integer("Schur inner iterations");

@@ -135,6 +135,9 @@ namespace viscofilm
       VelocityPreconditioner velocity_preconditioner = VelocityPreconditioner::automatic;
       unsigned int gmg_smoother_degree = 4; // Chebyshev degree on each level
       double       velocity_inner_tolerance  = 1e-2; // expensive iterations
+      /// The interface solve on the edge of the cells with η above this
+      /// multiple of the water's; 0: off.
+      double       interface_solve_ratio     = 1000;
       unsigned int velocity_inner_iterations = 1000;
       double       schur_inner_tolerance     = 1e-3;
       unsigned int schur_inner_iterations    = 200;

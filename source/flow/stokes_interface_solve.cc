@@ -1,0 +1,122 @@
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <viscofilm/flow/stokes_interface_solve.h>
+
+#include <algorithm>
+
+namespace viscofilm
+{
+  namespace
+  {
+    /// The locally owned rows of @p matrix flagged in @p rows (ghosted) that
+    /// have an entry in a column where @p columns (ghosted) is zero (@p
+    /// outside) or non-zero.
+    std::vector<types::global_dof_index>
+    rows_coupling_to(const TrilinosWrappers::SparseMatrix &matrix,
+                     const TrilinosWrappers::MPI::Vector & rows,
+                     const TrilinosWrappers::MPI::Vector & columns,
+                     const bool                            outside)
+    {
+      std::vector<types::global_dof_index> selected;
+      for (const types::global_dof_index r : matrix.locally_owned_range_indices())
+        if (rows[r] != 0)
+          for (auto entry = matrix.begin(r); entry != matrix.end(r); ++entry)
+            if ((columns[entry->column()] == 0) == outside)
+              {
+                selected.push_back(r);
+                break;
+              }
+      return selected;
+    }
+
+
+    /// A ghosted vector of @p matrix's layout, @p value at @p dofs (owned), 0 elsewhere.
+    TrilinosWrappers::MPI::Vector
+    indicator(const TrilinosWrappers::SparseMatrix &        matrix,
+              const IndexSet &                              relevant,
+              const std::vector<types::global_dof_index> & dofs,
+              const std::vector<double> &                   values)
+    {
+      const IndexSet &              owned = matrix.locally_owned_range_indices();
+      TrilinosWrappers::MPI::Vector local(owned, matrix.get_mpi_communicator());
+      for (unsigned int k = 0; k < dofs.size(); ++k)
+        local.begin()[owned.index_within_set(dofs[k])] = values[k];
+      TrilinosWrappers::MPI::Vector ghosted(owned, relevant, matrix.get_mpi_communicator());
+      ghosted = local;
+      return ghosted;
+    }
+  } // namespace
+
+
+  void
+  InterfaceSolve::build(const TrilinosWrappers::SparseMatrix &matrix,
+                        const TrilinosWrappers::MPI::Vector & high,
+                        const IndexSet &                      relevant,
+                        const std::string &                   direct_solver)
+  {
+    factorization.reset();
+    const MPI_Comm  comm  = matrix.get_mpi_communicator();
+    const IndexSet &owned = matrix.locally_owned_range_indices();
+
+    // Two rings of the viscous region's dofs along its edge.
+    const std::vector<types::global_dof_index> edge = rows_coupling_to(matrix, high, high, true);
+    const TrilinosWrappers::MPI::Vector        on_edge =
+      indicator(matrix, relevant, edge, std::vector<double>(edge.size(), 1.0));
+    std::vector<types::global_dof_index> band = edge;
+    for (const types::global_dof_index r : rows_coupling_to(matrix, high, on_edge, false))
+      if (on_edge[r] == 0)
+        band.push_back(r);
+    std::sort(band.begin(), band.end());
+
+    const IndexSet band_owned = Utilities::MPI::create_ascending_partitioning(
+      comm, band.size())[Utilities::MPI::this_mpi_process(comm)];
+    band_size = band_owned.size();
+    if (band_size == 0)
+      return;
+
+    // Each band dof's index in the band, plus one (0: not in the band).
+    std::vector<double> numbers(band.size());
+    for (unsigned int k = 0; k < band.size(); ++k)
+      numbers[k] = band_owned.nth_index_in_set(k) + 1;
+    const TrilinosWrappers::MPI::Vector band_number = indicator(matrix, relevant, band, numbers);
+
+    TrilinosWrappers::SparsityPattern sparsity(band_owned, comm);
+    const auto in_band = [&](const types::global_dof_index i) {
+      return static_cast<types::global_dof_index>(band_number[i]) - 1;
+    };
+    for (const types::global_dof_index r : band)
+      for (auto entry = matrix.begin(r); entry != matrix.end(r); ++entry)
+        if (band_number[entry->column()] != 0)
+          sparsity.add(in_band(r), in_band(entry->column()));
+    sparsity.compress();
+    band_matrix.reinit(sparsity);
+    for (const types::global_dof_index r : band)
+      for (auto entry = matrix.begin(r); entry != matrix.end(r); ++entry)
+        if (band_number[entry->column()] != 0)
+          band_matrix.set(in_band(r), in_band(entry->column()), entry->value());
+    band_matrix.compress(VectorOperation::insert);
+
+    band_rhs.reinit(band_owned, comm);
+    band_solution.reinit(band_owned, comm);
+    band_positions.clear();
+    for (const types::global_dof_index r : band)
+      band_positions.push_back(owned.index_within_set(r));
+    factorization = std::make_unique<TrilinosWrappers::SolverDirect>(
+      control, TrilinosWrappers::SolverDirect::AdditionalData(false, direct_solver));
+    factorization->initialize(band_matrix);
+  }
+
+
+  void
+  InterfaceSolve::add_solve(TrilinosWrappers::MPI::Vector &      dst,
+                            const TrilinosWrappers::MPI::Vector &src) const
+  {
+    for (unsigned int k = 0; k < band_positions.size(); ++k)
+      band_rhs.begin()[k] = src.begin()[band_positions[k]];
+    factorization->solve(band_solution, band_rhs);
+    for (unsigned int k = 0; k < band_positions.size(); ++k)
+      dst.begin()[band_positions[k]] += band_solution.begin()[k];
+  }
+} // namespace viscofilm
