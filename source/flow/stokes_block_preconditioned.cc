@@ -868,11 +868,7 @@ namespace viscofilm
       for (const types::global_dof_index i : viscous_cell_dofs)
         viscous(i) += 1;
       viscous.compress(VectorOperation::add);
-      TrilinosWrappers::MPI::Vector ghosted(velocity_block.locally_owned_range_indices(),
-                                            relevant_velocity,
-                                            mpi_communicator);
-      ghosted = viscous;
-      interface_solve.build(velocity_block, ghosted, relevant_velocity, parameters.direct_solver);
+      interface_solve.build(velocity_block, viscous, parameters.direct_solver);
     }
 
 

@@ -32,10 +32,37 @@ namespace viscofilm
     }
 
 
-    /// A ghosted vector of @p matrix's layout, @p value at @p dofs (owned), 0 elsewhere.
+    /// The columns of @p matrix's locally owned rows: with hanging nodes
+    /// they may reach beyond the locally relevant dofs.
+    IndexSet
+    owned_rows_columns(const TrilinosWrappers::SparseMatrix &matrix)
+    {
+      IndexSet columns(matrix.n());
+      for (const types::global_dof_index r : matrix.locally_owned_range_indices())
+        for (auto entry = matrix.begin(r); entry != matrix.end(r); ++entry)
+          columns.add_index(entry->column());
+      columns.compress();
+      return columns;
+    }
+
+
+    /// @p source (owned values) with ghost values at @p columns.
+    TrilinosWrappers::MPI::Vector
+    ghosted(const TrilinosWrappers::MPI::Vector &source, const IndexSet &columns)
+    {
+      TrilinosWrappers::MPI::Vector result(source.locally_owned_elements(),
+                                           columns,
+                                           source.get_mpi_communicator());
+      result = source;
+      return result;
+    }
+
+
+    /// A ghosted vector (ghosts at @p columns) of @p matrix's layout, @p
+    /// values at @p dofs (owned), 0 elsewhere.
     TrilinosWrappers::MPI::Vector
     indicator(const TrilinosWrappers::SparseMatrix &        matrix,
-              const IndexSet &                              relevant,
+              const IndexSet &                              columns,
               const std::vector<types::global_dof_index> & dofs,
               const std::vector<double> &                   values)
     {
@@ -43,27 +70,26 @@ namespace viscofilm
       TrilinosWrappers::MPI::Vector local(owned, matrix.get_mpi_communicator());
       for (unsigned int k = 0; k < dofs.size(); ++k)
         local.begin()[owned.index_within_set(dofs[k])] = values[k];
-      TrilinosWrappers::MPI::Vector ghosted(owned, relevant, matrix.get_mpi_communicator());
-      ghosted = local;
-      return ghosted;
+      return ghosted(local, columns);
     }
   } // namespace
 
 
   void
   InterfaceSolve::build(const TrilinosWrappers::SparseMatrix &matrix,
-                        const TrilinosWrappers::MPI::Vector & high,
-                        const IndexSet &                      relevant,
+                        const TrilinosWrappers::MPI::Vector & viscous,
                         const std::string &                   direct_solver)
   {
     factorization.reset();
-    const MPI_Comm  comm  = matrix.get_mpi_communicator();
-    const IndexSet &owned = matrix.locally_owned_range_indices();
+    const MPI_Comm                      comm    = matrix.get_mpi_communicator();
+    const IndexSet &                    owned   = matrix.locally_owned_range_indices();
+    const IndexSet                      columns = owned_rows_columns(matrix);
+    const TrilinosWrappers::MPI::Vector high    = ghosted(viscous, columns);
 
     // Two rings of the viscous region's dofs along its edge.
     const std::vector<types::global_dof_index> edge = rows_coupling_to(matrix, high, high, true);
     const TrilinosWrappers::MPI::Vector        on_edge =
-      indicator(matrix, relevant, edge, std::vector<double>(edge.size(), 1.0));
+      indicator(matrix, columns, edge, std::vector<double>(edge.size(), 1.0));
     std::vector<types::global_dof_index> band = edge;
     for (const types::global_dof_index r : rows_coupling_to(matrix, high, on_edge, false))
       if (on_edge[r] == 0)
@@ -80,7 +106,7 @@ namespace viscofilm
     std::vector<double> numbers(band.size());
     for (unsigned int k = 0; k < band.size(); ++k)
       numbers[k] = band_owned.nth_index_in_set(k) + 1;
-    const TrilinosWrappers::MPI::Vector band_number = indicator(matrix, relevant, band, numbers);
+    const TrilinosWrappers::MPI::Vector band_number = indicator(matrix, columns, band, numbers);
 
     TrilinosWrappers::SparsityPattern sparsity(band_owned, comm);
     const auto in_band = [&](const types::global_dof_index i) {

@@ -5,8 +5,6 @@
 #ifndef viscofilm_stokes_interface_solve_h
 #define viscofilm_stokes_interface_solve_h
 
-#include <deal.II/base/index_set.h>
-
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -34,14 +32,13 @@ namespace viscofilm
   {
   public:
     /// Select the band of @p matrix (the velocity block) among the dofs
-    /// flagged in @p high (a vector of the block's layout, non-zero at the
-    /// dofs of the high-viscosity cells, with ghost entries) and factorise
-    /// its submatrix with the Amesos package @p direct_solver. An empty band
-    /// leaves the solve off.
+    /// flagged in @p viscous (a vector of the block's layout, non-zero at
+    /// the dofs of the high-viscosity cells) and factorise its submatrix
+    /// with the Amesos package @p direct_solver. An empty band leaves the
+    /// solve off.
     void
     build(const TrilinosWrappers::SparseMatrix &matrix,
-          const TrilinosWrappers::MPI::Vector & high,
-          const IndexSet &                      relevant,
+          const TrilinosWrappers::MPI::Vector & viscous,
           const std::string &                   direct_solver);
 
     /// Whether build() found a band.
