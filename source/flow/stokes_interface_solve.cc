@@ -98,8 +98,7 @@ namespace viscofilm
 
     const IndexSet band_owned = Utilities::MPI::create_ascending_partitioning(
       comm, band.size())[Utilities::MPI::this_mpi_process(comm)];
-    band_size = band_owned.size();
-    if (band_size == 0)
+    if (band_owned.size() == 0)
       return;
 
     // Each band dof's index in the band, plus one (0: not in the band).

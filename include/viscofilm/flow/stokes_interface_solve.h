@@ -1,6 +1,6 @@
 // The velocity block's exact solve on the biofilm's edge (Stokes solver/
-// Preconditioner/Interface solve viscosity ratio): what makes the block
-// preconditioner robust at viscosity contrasts of 1e4 and more
+// Preconditioner/Interface solve viscosity ratio): what lets the block
+// preconditioner converge at viscosity contrasts of 1e4 and more in 2D
 // (doc/numerics-stokes.md, "Sharp viscosity contrasts").
 #ifndef viscofilm_stokes_interface_solve_h
 #define viscofilm_stokes_interface_solve_h
@@ -48,13 +48,6 @@ namespace viscofilm
       return factorization != nullptr;
     }
 
-    /// The number of dofs in the band (all ranks).
-    types::global_dof_index
-    size() const
-    {
-      return band_size;
-    }
-
     /// dst += Rᵀ B⁻¹ R src: the band's exact solve with the residual @p src.
     void
     add_solve(TrilinosWrappers::MPI::Vector &dst, const TrilinosWrappers::MPI::Vector &src) const;
@@ -63,7 +56,6 @@ namespace viscofilm
     /// The locally owned band dofs' positions in the owned part of the
     /// block's vectors, in the band's order.
     std::vector<types::global_dof_index>            band_positions;
-    types::global_dof_index                         band_size = 0;
     TrilinosWrappers::SparseMatrix                  band_matrix;
     SolverControl                                   control;
     std::unique_ptr<TrilinosWrappers::SolverDirect> factorization;
