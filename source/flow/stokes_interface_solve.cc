@@ -37,10 +37,14 @@ namespace viscofilm
     IndexSet
     owned_rows_columns(const TrilinosWrappers::SparseMatrix &matrix)
     {
-      IndexSet columns(matrix.n());
+      std::vector<types::global_dof_index> indices;
       for (const types::global_dof_index r : matrix.locally_owned_range_indices())
         for (auto entry = matrix.begin(r); entry != matrix.end(r); ++entry)
-          columns.add_index(entry->column());
+          indices.push_back(entry->column());
+      std::sort(indices.begin(), indices.end());
+      indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+      IndexSet columns(matrix.n());
+      columns.add_indices(indices.begin(), indices.end());
       columns.compress();
       return columns;
     }
@@ -81,6 +85,9 @@ namespace viscofilm
                         const std::string &                   direct_solver)
   {
     factorization.reset();
+    // No viscous cell anywhere (a viscosity ratio below the threshold): off.
+    if (viscous.linfty_norm() == 0)
+      return;
     const MPI_Comm                      comm    = matrix.get_mpi_communicator();
     const IndexSet &                    owned   = matrix.locally_owned_range_indices();
     const IndexSet                      columns = owned_rows_columns(matrix);
