@@ -602,6 +602,8 @@ namespace viscofilm
       };
       reinit(coupling, system_matrix);
       reinit(mass_coupling, preconditioner_matrix);
+      if (parameters.interface_solve_ratio > 0)
+        interface_solve.reinit(system_matrix.block(0, 0));
 
       // Level 0 is on every rank.
       std::vector<Point<dim>> coarse_vertices;

@@ -5,6 +5,7 @@
 #include <viscofilm/flow/stokes_interface_solve.h>
 
 #include <algorithm>
+#include <tuple>
 
 namespace viscofilm
 {
@@ -29,24 +30,6 @@ namespace viscofilm
                 break;
               }
       return selected;
-    }
-
-
-    /// The columns of @p matrix's locally owned rows: with hanging nodes
-    /// they may reach beyond the locally relevant dofs.
-    IndexSet
-    owned_rows_columns(const TrilinosWrappers::SparseMatrix &matrix)
-    {
-      std::vector<types::global_dof_index> indices;
-      for (const types::global_dof_index r : matrix.locally_owned_range_indices())
-        for (auto entry = matrix.begin(r); entry != matrix.end(r); ++entry)
-          indices.push_back(entry->column());
-      std::sort(indices.begin(), indices.end());
-      indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
-      IndexSet columns(matrix.n());
-      columns.add_indices(indices.begin(), indices.end());
-      columns.compress();
-      return columns;
     }
 
 
@@ -80,6 +63,22 @@ namespace viscofilm
 
 
   void
+  InterfaceSolve::reinit(const TrilinosWrappers::SparseMatrix &matrix)
+  {
+    factorization.reset();
+    std::vector<types::global_dof_index> indices;
+    for (const types::global_dof_index r : matrix.locally_owned_range_indices())
+      for (auto entry = matrix.begin(r); entry != matrix.end(r); ++entry)
+        indices.push_back(entry->column());
+    std::sort(indices.begin(), indices.end());
+    indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+    columns = IndexSet(matrix.n());
+    columns.add_indices(indices.begin(), indices.end());
+    columns.compress();
+  }
+
+
+  void
   InterfaceSolve::build(const TrilinosWrappers::SparseMatrix &matrix,
                         const TrilinosWrappers::MPI::Vector & viscous,
                         const std::string &                   direct_solver)
@@ -90,7 +89,6 @@ namespace viscofilm
       return;
     const MPI_Comm                      comm    = matrix.get_mpi_communicator();
     const IndexSet &                    owned   = matrix.locally_owned_range_indices();
-    const IndexSet                      columns = owned_rows_columns(matrix);
     const TrilinosWrappers::MPI::Vector high    = ghosted(viscous, columns);
 
     // Two rings of the viscous region's dofs along its edge.
@@ -114,20 +112,22 @@ namespace viscofilm
       numbers[k] = band_owned.nth_index_in_set(k) + 1;
     const TrilinosWrappers::MPI::Vector band_number = indicator(matrix, columns, band, numbers);
 
-    TrilinosWrappers::SparsityPattern sparsity(band_owned, comm);
-    const auto in_band = [&](const types::global_dof_index i) {
-      return static_cast<types::global_dof_index>(band_number[i]) - 1;
-    };
+    // The band's entries (band row, band column, value), then its matrix.
+    std::vector<std::tuple<types::global_dof_index, types::global_dof_index, double>> entries;
     for (const types::global_dof_index r : band)
       for (auto entry = matrix.begin(r); entry != matrix.end(r); ++entry)
         if (band_number[entry->column()] != 0)
-          sparsity.add(in_band(r), in_band(entry->column()));
+          entries.emplace_back(static_cast<types::global_dof_index>(band_number[r]) - 1,
+                               static_cast<types::global_dof_index>(
+                                 band_number[entry->column()]) - 1,
+                               entry->value());
+    TrilinosWrappers::SparsityPattern sparsity(band_owned, comm);
+    for (const auto &[row, column, value] : entries)
+      sparsity.add(row, column);
     sparsity.compress();
     band_matrix.reinit(sparsity);
-    for (const types::global_dof_index r : band)
-      for (auto entry = matrix.begin(r); entry != matrix.end(r); ++entry)
-        if (band_number[entry->column()] != 0)
-          band_matrix.set(in_band(r), in_band(entry->column()), entry->value());
+    for (const auto &[row, column, value] : entries)
+      band_matrix.set(row, column, value);
     band_matrix.compress(VectorOperation::insert);
 
     band_rhs.reinit(band_owned, comm);

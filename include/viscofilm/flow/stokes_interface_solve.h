@@ -5,6 +5,8 @@
 #ifndef viscofilm_stokes_interface_solve_h
 #define viscofilm_stokes_interface_solve_h
 
+#include <deal.II/base/index_set.h>
+
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -31,6 +33,12 @@ namespace viscofilm
   class InterfaceSolve
   {
   public:
+    /// After a mesh change: the columns of @p matrix's (the velocity block's)
+    /// locally owned rows, where build() reads the flags; with hanging nodes
+    /// they may reach beyond the locally relevant dofs.
+    void
+    reinit(const TrilinosWrappers::SparseMatrix &matrix);
+
     /// Select the band of @p matrix (the velocity block) among the dofs
     /// flagged in @p viscous (a vector of the block's layout, non-zero at
     /// the dofs of the high-viscosity cells) and factorise its submatrix
@@ -56,6 +64,7 @@ namespace viscofilm
     /// The locally owned band dofs' positions in the owned part of the
     /// block's vectors, in the band's order.
     std::vector<types::global_dof_index>            band_positions;
+    IndexSet                                        columns;
     TrilinosWrappers::SparseMatrix                  band_matrix;
     SolverControl                                   control;
     std::unique_ptr<TrilinosWrappers::SolverDirect> factorization;
