@@ -178,10 +178,12 @@ viscofilm_test(channel_biofilm_substrate MODE run RANKS 2
 # semi-Lagrangian step makes more biofilm where the sheared water's feet land
 # in the patch than its mass fixer has room to remove at the fronts (∫φ +36 %
 # in 2 hours): the run must say so. statistics.csv's
-# volume_fraction_mass_defect is −1.36e-6 (of ∫φ = 6.1e-6) at step 4, and the
-# run warns. With the defect not recorded: 0 (fails).
+# volume_fraction_mass_defect is −2.79e-8 (of ∫φ = 6.1e-6) at step 2, and the
+# run warns. With the defect not recorded: 0 (fails). Two steps only: the
+# later ones amplify run-to-run round-off differences on 2 ranks (step 4's
+# defect −2.1e-7 to −1.36e-6 over six runs; step 2's agreed to 8e-7 relative).
 file(READ ${CMAKE_SOURCE_DIR}/prm/examples/channel-biofilm-si.prm _prm)
-string(REGEX REPLACE "set Number of steps *= *[0-9]+" "set Number of steps = 4" _prm "${_prm}")
+string(REGEX REPLACE "set Number of steps *= *[0-9]+" "set Number of steps = 2" _prm "${_prm}")
 string(REGEX REPLACE "set Time step *= *[0-9.]+" "set Time step = 900" _prm "${_prm}")
 string(REGEX REPLACE "set Volume fraction = if[^\n]*" "set Volume fraction = if(x > 2e-3 & x < 8e-3 & y < 1e-3, 1, 0)" _prm "${_prm}")
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/phi_balance_long_steps.prm "${_prm}
@@ -195,6 +197,6 @@ end
 viscofilm_test(phi_balance_long_steps MODE run RANKS 2
   PRM ${CMAKE_CURRENT_BINARY_DIR}/phi_balance_long_steps.prm
   REFERENCE ${S}/real_scales/phi_balance_long_steps.output
-  BOUND "statistics.csv[step>3]:volume_fraction_mass_defect<-1e-6"
-  NUMDIFF "-a 1e-16 -r 1e-6"
+  BOUND "statistics.csv[step>1]:volume_fraction_mass_defect<-1e-8"
+  NUMDIFF "-a 1e-16 -r 1e-5"
   COMPARE statistics.csv:step,volume_fraction_integral,volume_fraction_mass_defect)
